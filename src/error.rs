@@ -1,0 +1,389 @@
+//! Typed errors of the solver: every variant names the input or output it is about.
+
+use std::fmt;
+
+/// A named input of an impact request, with the paper's symbol.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Input {
+    /// Mass `m`.
+    Mass,
+    /// Centroidal moment of inertia `I = m k²`.
+    Inertia,
+    /// Tangential offset `d_c` of the centre of mass from the contact point.
+    TangentialOffset,
+    /// Normal offset `d_d` of the centre of mass from the contact point.
+    NormalOffset,
+    /// Initial normal velocity of the centre of mass `v_n`.
+    NormalVelocity,
+    /// Initial tangential velocity of the centre of mass `v_t`.
+    TangentialVelocity,
+    /// Initial angular velocity `ω`.
+    AngularVelocity,
+    /// Kinematic coefficient of restitution `e`.
+    Restitution,
+    /// Coulomb friction coefficient `f`.
+    Friction,
+    /// Prescribed impulse ratio `μ`.
+    ImpulseRatio,
+    /// Tangential coefficient of restitution `e_t`.
+    TangentialRestitution,
+    /// Kinetic coefficient of restitution `R`.
+    KineticRestitution,
+    /// Approach-phase impulse ratio `μ_A`.
+    ApproachImpulseRatio,
+    /// Rebound-phase impulse ratio `μ_R`.
+    ReboundImpulseRatio,
+    /// Moment of inertia about the normal axis `I_n`.
+    NormalInertia,
+    /// Initial spin about the normal axis `ω_n`.
+    Spin,
+    /// Torsional coefficient of restitution `e_z`.
+    TorsionalRestitution,
+    /// Torsional friction coefficient `μ_z`.
+    TorsionalFriction,
+    /// Pitch radius `ρ_p` of the torsional friction impulse.
+    PitchRadius,
+}
+
+impl Input {
+    /// The paper's symbol for this input.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Input::Mass => "m",
+            Input::Inertia => "I",
+            Input::TangentialOffset => "d_c",
+            Input::NormalOffset => "d_d",
+            Input::NormalVelocity => "v_n",
+            Input::TangentialVelocity => "v_t",
+            Input::AngularVelocity => "ω",
+            Input::Restitution => "e",
+            Input::Friction => "f",
+            Input::ImpulseRatio => "μ",
+            Input::TangentialRestitution => "e_t",
+            Input::KineticRestitution => "R",
+            Input::ApproachImpulseRatio => "μ_A",
+            Input::ReboundImpulseRatio => "μ_R",
+            Input::NormalInertia => "I_n",
+            Input::Spin => "ω_n",
+            Input::TorsionalRestitution => "e_z",
+            Input::TorsionalFriction => "μ_z",
+            Input::PitchRadius => "ρ_p",
+        }
+    }
+
+    /// A plain-words name of this input.
+    pub fn name(self) -> &'static str {
+        match self {
+            Input::Mass => "mass",
+            Input::Inertia => "moment of inertia",
+            Input::TangentialOffset => "tangential offset",
+            Input::NormalOffset => "normal offset",
+            Input::NormalVelocity => "normal velocity",
+            Input::TangentialVelocity => "tangential velocity",
+            Input::AngularVelocity => "angular velocity",
+            Input::Restitution => "coefficient of restitution",
+            Input::Friction => "friction coefficient",
+            Input::ImpulseRatio => "impulse ratio",
+            Input::TangentialRestitution => "tangential coefficient of restitution",
+            Input::KineticRestitution => "kinetic coefficient of restitution",
+            Input::ApproachImpulseRatio => "approach impulse ratio",
+            Input::ReboundImpulseRatio => "rebound impulse ratio",
+            Input::NormalInertia => "moment of inertia about the normal",
+            Input::Spin => "spin about the normal",
+            Input::TorsionalRestitution => "torsional coefficient of restitution",
+            Input::TorsionalFriction => "torsional friction coefficient",
+            Input::PitchRadius => "pitch radius",
+        }
+    }
+}
+
+impl fmt::Display for Input {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}", self.name(), self.symbol())
+    }
+}
+
+/// A named output of an impact outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Output {
+    /// Final normal velocity `V_n`.
+    FinalNormalVelocity,
+    /// Final tangential velocity `V_t`.
+    FinalTangentialVelocity,
+    /// Final angular velocity `Ω`.
+    FinalAngularVelocity,
+    /// Final normal contact-point velocity `V_cn`.
+    FinalNormalContactVelocity,
+    /// Final tangential contact-point velocity `V_ct`.
+    FinalTangentialContactVelocity,
+    /// Normal impulse `P_n`.
+    NormalImpulse,
+    /// Tangential impulse `P_t`.
+    TangentialImpulse,
+    /// Applied impulse ratio `μ`.
+    ImpulseRatio,
+    /// Critical impulse ratio `μ_c`.
+    CriticalImpulseRatio,
+    /// Kinematic coefficient of restitution `e`.
+    Restitution,
+    /// Initial kinetic energy.
+    InitialEnergy,
+    /// Final kinetic energy.
+    FinalEnergy,
+    /// Kinetic energy loss `T_L`.
+    EnergyLoss,
+    /// Maximum energy loss `T_M`.
+    MaxEnergyLoss,
+    /// Normalised energy loss `T_L* = T_L / T_M`.
+    NormalizedEnergyLoss,
+    /// Final spin about the normal `Ω_n`.
+    FinalSpin,
+    /// Torsional impulse `M_n`.
+    TorsionalImpulse,
+    /// Spin at the switch between the torsional branches (Eq 31).
+    SwitchSpin,
+}
+
+impl Output {
+    /// The paper's symbol (or a short name) for this output.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Output::FinalNormalVelocity => "V_n",
+            Output::FinalTangentialVelocity => "V_t",
+            Output::FinalAngularVelocity => "Ω",
+            Output::FinalNormalContactVelocity => "V_cn",
+            Output::FinalTangentialContactVelocity => "V_ct",
+            Output::NormalImpulse => "P_n",
+            Output::TangentialImpulse => "P_t",
+            Output::ImpulseRatio => "μ",
+            Output::CriticalImpulseRatio => "μ_c",
+            Output::Restitution => "e",
+            Output::InitialEnergy => "T_i",
+            Output::FinalEnergy => "T_f",
+            Output::EnergyLoss => "T_L",
+            Output::MaxEnergyLoss => "T_M",
+            Output::NormalizedEnergyLoss => "T_L*",
+            Output::FinalSpin => "Ω_n",
+            Output::TorsionalImpulse => "M_n",
+            Output::SwitchSpin => "ω_switch",
+        }
+    }
+}
+
+impl fmt::Display for Output {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol())
+    }
+}
+
+/// The interval of impulse ratios `μ` that give a physical answer (`D > 0` and
+/// no energy created) for a given scene and `e`. `None` means unbounded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdmissibleInterval {
+    /// Lowest admissible `μ`, or `None` for no lower bound.
+    pub lower: Option<f64>,
+    /// Highest admissible `μ`, or `None` for no upper bound.
+    pub upper: Option<f64>,
+}
+
+impl AdmissibleInterval {
+    /// Whether `mu` lies in the interval (bounds included).
+    pub fn contains(&self, mu: f64) -> bool {
+        self.lower.is_none_or(|lo| mu >= lo) && self.upper.is_none_or(|hi| mu <= hi)
+    }
+}
+
+impl fmt::Display for AdmissibleInterval {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.lower {
+            Some(lo) => write!(f, "[{lo}, ")?,
+            None => f.write_str("(-∞, ")?,
+        }
+        match self.upper {
+            Some(hi) => write!(f, "{hi}]"),
+            None => f.write_str("∞)"),
+        }
+    }
+}
+
+/// Why the solver gives no answer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImpactError {
+    /// An input is NaN or infinite.
+    #[error("{input} must be a finite number")]
+    NotFinite {
+        /// The offending input.
+        input: Input,
+    },
+    /// An input that must be strictly positive is not.
+    #[error("{input} must be greater than 0, got {value}")]
+    NotPositive {
+        /// The offending input.
+        input: Input,
+        /// Its value.
+        value: f64,
+    },
+    /// An input lies outside its closed range.
+    #[error("{input} must lie in [{min}, {max}], got {value}")]
+    OutOfRange {
+        /// The offending input.
+        input: Input,
+        /// Its value.
+        value: f64,
+        /// Smallest allowed value.
+        min: f64,
+        /// Largest allowed value.
+        max: f64,
+    },
+    /// An input that only makes sense for a rigid body was given for a point mass.
+    #[error(
+        "{input} needs a moment of inertia: a point mass has no contact offset and no rotation"
+    )]
+    NeedsInertia {
+        /// The offending input.
+        input: Input,
+    },
+    /// The contact point is not approaching the barrier, so there is no impact.
+    #[error(
+        "the contact is not approaching the barrier: the normal contact velocity is {normal_contact_velocity}, \
+         and an impact needs it below 0"
+    )]
+    NotApproaching {
+        /// The input that sets the approach velocity.
+        input: Input,
+        /// `v_cn = v_n + d_c ω` (planar) or `v_n` (torsional).
+        normal_contact_velocity: f64,
+    },
+    /// `D ≤ 0`: the rigid-body impulse model has no physical answer.
+    #[error(
+        "no impulse solution: D = 1 + d_c (d_c − μ d_d) / k² = {d} is not positive at impulse ratio μ = {impulse_ratio}; \
+         the normal impulse would be infinite or negative, so the rigid-body impulse model has no physical answer"
+    )]
+    NoImpulseSolution {
+        /// The input whose value leads to `D ≤ 0`.
+        input: Input,
+        /// The impulse ratio the answer would need.
+        impulse_ratio: f64,
+        /// `D` at that ratio.
+        d: f64,
+    },
+    /// The answer would create kinetic energy, which is not physical.
+    #[error(
+        "the impulse ratio μ = {impulse_ratio} would create kinetic energy (T_L = {energy_loss} < 0); \
+         the admissible impulse ratios for this scene and e are μ ∈ {admissible}"
+    )]
+    CreatesEnergy {
+        /// The input that leads to the energy-creating ratio.
+        input: Input,
+        /// The impulse ratio of the rejected answer.
+        impulse_ratio: f64,
+        /// The (negative) energy loss of the rejected answer.
+        energy_loss: f64,
+        /// Impulse ratios that would be admissible.
+        admissible: AdmissibleInterval,
+    },
+    /// An output's exact value does not fit in a finite f64.
+    #[error("the output {output} is not representable as a finite double for these inputs")]
+    OutputNotFinite {
+        /// The offending output.
+        output: Output,
+    },
+}
+
+impl ImpactError {
+    /// The input the error is about, if any.
+    pub fn input(&self) -> Option<Input> {
+        match self {
+            ImpactError::NotFinite { input }
+            | ImpactError::NotPositive { input, .. }
+            | ImpactError::OutOfRange { input, .. }
+            | ImpactError::NeedsInertia { input }
+            | ImpactError::NotApproaching { input, .. }
+            | ImpactError::NoImpulseSolution { input, .. }
+            | ImpactError::CreatesEnergy { input, .. } => Some(*input),
+            ImpactError::OutputNotFinite { .. } => None,
+        }
+    }
+
+    /// The output the error is about, if any.
+    pub fn output(&self) -> Option<Output> {
+        match self {
+            ImpactError::OutputNotFinite { output } => Some(*output),
+            _ => None,
+        }
+    }
+
+    /// A short, stable title for the kind of error.
+    pub fn title(&self) -> &'static str {
+        match self {
+            ImpactError::NotFinite { .. } => "Input is not finite",
+            ImpactError::NotPositive { .. } => "Input must be positive",
+            ImpactError::OutOfRange { .. } => "Input out of range",
+            ImpactError::NeedsInertia { .. } => "Input needs a moment of inertia",
+            ImpactError::NotApproaching { .. } => "Contact is not approaching",
+            ImpactError::NoImpulseSolution { .. } => "No impulse solution",
+            ImpactError::CreatesEnergy { .. } => "Answer would create energy",
+            ImpactError::OutputNotFinite { .. } => "Output is not finite",
+        }
+    }
+
+    /// A stable machine-readable slug for the kind of error.
+    pub fn slug(&self) -> &'static str {
+        match self {
+            ImpactError::NotFinite { .. } => "not-finite",
+            ImpactError::NotPositive { .. } => "not-positive",
+            ImpactError::OutOfRange { .. } => "out-of-range",
+            ImpactError::NeedsInertia { .. } => "needs-inertia",
+            ImpactError::NotApproaching { .. } => "not-approaching",
+            ImpactError::NoImpulseSolution { .. } => "no-impulse-solution",
+            ImpactError::CreatesEnergy { .. } => "creates-energy",
+            ImpactError::OutputNotFinite { .. } => "output-not-finite",
+        }
+    }
+}
+
+/// Result type of the solver.
+pub type Result<T> = std::result::Result<T, ImpactError>;
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(input: Input, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ImpactError::NotFinite { input })
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn positive(input: Input, value: f64) -> Result<f64> {
+    finite(input, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ImpactError::NotPositive { input, value })
+    }
+}
+
+/// Checks that `value` is finite and in `[min, max]`.
+pub(crate) fn in_range(input: Input, value: f64, min: f64, max: f64) -> Result<f64> {
+    finite(input, value)?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(ImpactError::OutOfRange {
+            input,
+            value,
+            min,
+            max,
+        })
+    }
+}
+
+/// Checks that a computed output is finite.
+pub(crate) fn finite_output(output: Output, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ImpactError::OutputNotFinite { output })
+    }
+}
