@@ -236,9 +236,7 @@ pub enum ImpactError {
         max: f64,
     },
     /// An input that only makes sense for a rigid body was given for a point mass.
-    #[error(
-        "{input} needs a moment of inertia: a point mass has no contact offset and no rotation"
-    )]
+    #[error("{input} needs a moment of inertia: a point mass has no contact offset and no rotation")]
     NeedsInertia {
         /// The offending input.
         input: Input,

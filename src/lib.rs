@@ -34,7 +34,7 @@ pub mod tangential;
 pub mod torsional;
 
 #[cfg(feature = "server")]
-pub mod http {}
+pub mod http;
 
 pub use error::{AdmissibleInterval, ImpactError, Input, Output};
 pub use planar::{Outputs, PlanarOutcome, Regime};

@@ -5,9 +5,7 @@
 
 use crate::energy::PlanarEnergy;
 use crate::error::{ImpactError, Input, Output, Result, finite, finite_output, in_range, positive};
-use crate::planar::{
-    ContactVelocities, Impulse, Outputs, PlanarOutcome, Regime, assemble, ratio_solution,
-};
+use crate::planar::{ContactVelocities, Impulse, Outputs, PlanarOutcome, Regime, assemble, ratio_solution};
 use crate::scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};
 
 /// A normal impact request. Without `inertia` the body is a point mass: it has
@@ -32,8 +30,7 @@ pub fn solve(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> {
     match impact.inertia {
         Some(inertia) => {
             let body = Body::new(impact.mass, inertia)?;
-            let scene =
-                PlanarScene::new(body, impact.contact.unwrap_or_default(), impact.velocity)?;
+            let scene = PlanarScene::new(body, impact.contact.unwrap_or_default(), impact.velocity)?;
             let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
             let sol = ratio_solution(&scene, e, 0.0, Input::Restitution)?;
             assemble(
@@ -93,13 +90,9 @@ fn point_mass(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> 
             Output::FinalEnergy,
             0.5 * m * final_normal.mul_add(final_normal, vt * vt),
         )?;
-        let loss = finite_output(
-            Output::EnergyLoss,
-            0.5 * m * ((1.0 - e) * vn) * ((1.0 + e) * -vn),
-        )?
-        .max(0.0);
-        let normalized_loss =
-            finite_output(Output::NormalizedEnergyLoss, (loss / initial).min(1.0))?;
+        let loss =
+            finite_output(Output::EnergyLoss, 0.5 * m * ((1.0 - e) * vn) * ((1.0 + e) * -vn))?.max(0.0);
+        let normalized_loss = finite_output(Output::NormalizedEnergyLoss, (loss / initial).min(1.0))?;
         Some(PlanarEnergy {
             initial,
             r#final,

@@ -79,11 +79,7 @@ pub fn solve_kinetic(
     let mu_r = finite(Input::ReboundImpulseRatio, kinetic.rebound_impulse_ratio)?;
     let d_a = scene.dk2(mu_a);
     if d_a <= 0.0 || !d_a.is_finite() {
-        return Err(no_impulse_solution(
-            scene,
-            mu_a,
-            Input::ApproachImpulseRatio,
-        ));
+        return Err(no_impulse_solution(scene, mu_a, Input::ApproachImpulseRatio));
     }
     let d_r = scene.dk2(mu_r);
     if r > 0.0 && (d_r <= 0.0 || !d_r.is_finite()) {
@@ -98,14 +94,12 @@ pub fn solve_kinetic(
     let c = scene.contact_velocity;
     let s = -c.normal;
     // Each phase is a ratio answer: approach with "1 + e" = 1, rebound scaled by R.
-    let (dn_a, dt_a, dw_a, dvct_a) =
-        general_ratio_path(scene, s, mu_a, Input::ApproachImpulseRatio)?;
+    let (dn_a, dt_a, dw_a, dvct_a) = general_ratio_path(scene, s, mu_a, Input::ApproachImpulseRatio)?;
     let (dn_r, dt_r, dw_r, dvct_r) = if r == 0.0 {
         (0.0, 0.0, 0.0, 0.0)
     } else {
         let rebound_scale = r * s * (d_r / d_a);
-        let (dn, dt, dw, dvct) =
-            general_ratio_path(scene, rebound_scale, mu_r, Input::ReboundImpulseRatio)?;
+        let (dn, dt, dw, dvct) = general_ratio_path(scene, rebound_scale, mu_r, Input::ReboundImpulseRatio)?;
         (dn, dt, dw, dvct)
     };
     let dn = dn_a + dn_r;

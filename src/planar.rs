@@ -194,11 +194,7 @@ fn central_ratio_path(scene: &PlanarScene, qn: f64, mu: f64) -> (f64, f64, f64, 
 }
 
 /// Frictionless contact (`μ = 0`): `D = 1 + d_c²/k² > 0` always, no tangential impulse.
-fn frictionless_ratio_path(
-    scene: &PlanarScene,
-    qn: f64,
-    law: Input,
-) -> Result<(f64, f64, f64, f64)> {
+fn frictionless_ratio_path(scene: &PlanarScene, qn: f64, law: Input) -> Result<(f64, f64, f64, f64)> {
     let (dc, dd, k2) = geometry(scene);
     let dk2 = dc.mul_add(dc, k2);
     if !dk2.is_finite() {
@@ -313,11 +309,7 @@ pub fn admissible_interval(scene: &PlanarScene, e: f64) -> AdmissibleInterval {
     if c2 != 0.0 {
         let disc = c1.mul_add(c1, -4.0 * c2 * c0).max(0.0);
         let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
-        let (mut r1, mut r2) = if q == 0.0 {
-            (0.0, 0.0)
-        } else {
-            (q / c2, c0 / q)
-        };
+        let (mut r1, mut r2) = if q == 0.0 { (0.0, 0.0) } else { (q / c2, c0 / q) };
         if r1 > r2 {
             std::mem::swap(&mut r1, &mut r2);
         }
@@ -403,7 +395,7 @@ pub(crate) fn assemble(
     })
     .transpose()?;
     let energy = if outputs.energy {
-        Some(energy::planar(scene, &final_velocity, -0.5 * m * work)?)
+        Some(energy::planar(scene, &final_velocity, -0.5 * work)?)
     } else {
         None
     };

@@ -25,12 +25,7 @@ pub fn solve(
 ) -> Result<PlanarOutcome> {
     let e = in_range(Input::Restitution, restitution, 0.0, 1.0)?;
     let f = in_range(Input::Friction, friction, 0.0, f64::INFINITY)?;
-    let et = in_range(
-        Input::TangentialRestitution,
-        tangential_restitution,
-        -1.0,
-        1.0,
-    )?;
+    let et = in_range(Input::TangentialRestitution, tangential_restitution, -1.0, 1.0)?;
     bilinear(scene, e, f, et, Regime::Restitution, outputs)
 }
 
@@ -47,8 +42,7 @@ pub(crate) fn bilinear(
     let target = target_solution(scene, e, et);
     let mu_target = target.impulse_ratio;
     // For e_t = 0 the target ratio is the critical ratio μ_c itself.
-    let known_critical =
-        (et == 0.0).then(|| Some(mu_target).filter(|mu| target.dn != 0.0 && mu.is_finite()));
+    let known_critical = (et == 0.0).then(|| Some(mu_target).filter(|mu| target.dn != 0.0 && mu.is_finite()));
     if target.dn != 0.0 && mu_target.abs() <= f {
         if target.dn < 0.0 {
             return Err(no_impulse_solution(scene, mu_target, Input::Friction));

@@ -1,0 +1,1 @@
+//! The HTTP service (axum) over the solver.
