@@ -1,1 +1,246 @@
-//! The HTTP service (axum) over the solver.
+//! The HTTP service: axum routes over the solver, problem+json errors, the
+//! generated OpenAPI 3.1 document and the middleware stack.
+//!
+//! A request flows: socket → request id → access log → panic guard → load
+//! shedding at the concurrency limit → timeout → body limit → router →
+//! `ApiJson` extractor (DTO) → solver → response DTO.
+
+pub mod config;
+pub mod dto;
+pub mod extract;
+pub mod impacts;
+pub mod problem;
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::http::{HeaderValue, StatusCode};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::{BoxError, Json, Router};
+use serde::Serialize;
+use tower::ServiceBuilder;
+use tower_http::catch_panic::CatchPanicLayer;
+use tower_http::request_id::{MakeRequestId, PropagateRequestIdLayer, RequestId, SetRequestIdLayer};
+use tower_http::set_header::SetResponseHeaderLayer;
+use utoipa::openapi::OpenApi as OpenApiDocument;
+use utoipa::{OpenApi, ToSchema};
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+use utoipa_swagger_ui::SwaggerUi;
+
+pub use config::ServiceConfig;
+use problem::ApiError;
+
+/// The header that carries the request id.
+pub const REQUEST_ID: &str = "x-request-id";
+
+#[derive(OpenApi)]
+#[openapi(
+    info(
+        title = "restitution",
+        description = "Rigid-body point-collision outcomes (final velocities, impulses, energy loss) from \
+                       coefficients of restitution and friction, after R. M. Brach, \"Restitution in Point \
+                       Collisions\" (1991). Frame: n is the barrier's outward normal, t the tangent; the \
+                       centre of mass sits at (d_c, d_d) from the contact point; ω turns n toward t. Any \
+                       consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
+    ),
+    tags((name = "impacts", description = "One impact per request"), (name = "service", description = "Liveness"))
+)]
+struct ApiDoc;
+
+/// Liveness answer.
+#[derive(Serialize, ToSchema)]
+pub struct Health {
+    /// Always `ok`.
+    pub status: &'static str,
+}
+
+/// Liveness probe.
+#[utoipa::path(get, path = "/healthz", tag = "service", responses((status = 200, description = "The service is up", body = Health)))]
+async fn healthz() -> Json<Health> {
+    Json(Health { status: "ok" })
+}
+
+fn routes() -> OpenApiRouter {
+    OpenApiRouter::with_openapi(ApiDoc::openapi())
+        .routes(routes!(impacts::impacts_normal))
+        .routes(routes!(impacts::impacts_oblique))
+        .routes(routes!(impacts::impacts_tangential))
+        .routes(routes!(impacts::impacts_torsional))
+        .routes(routes!(healthz))
+}
+
+/// The OpenAPI 3.1 document generated from the code.
+pub fn openapi() -> OpenApiDocument {
+    let mut doc = routes().into_openapi();
+    doc.info.version = env!("CARGO_PKG_VERSION").to_owned();
+    doc.info.license = Some(utoipa::openapi::License::new(env!("CARGO_PKG_LICENSE")));
+    doc
+}
+
+/// The OpenAPI document as pretty JSON with a final newline (the committed form).
+pub fn openapi_json() -> String {
+    let mut text = openapi().to_pretty_json().unwrap_or_default();
+    text.push('\n');
+    text
+}
+
+/// The application: routes, documentation and middleware, ready to serve.
+pub fn app(config: &ServiceConfig) -> Router {
+    let (router, _) = routes().split_for_parts();
+    let limits = Arc::new(config.clone());
+    router
+        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi()))
+        .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
+        .layer(DefaultBodyLimit::max(config.body_limit))
+        .layer(middleware::from_fn_with_state(limits, request_timeout))
+        .layer(
+            ServiceBuilder::new()
+                .layer(SetRequestIdLayer::new(
+                    REQUEST_ID.parse().expect("valid header"),
+                    SequentialId::default(),
+                ))
+                .layer(PropagateRequestIdLayer::new(
+                    REQUEST_ID.parse().expect("valid header"),
+                ))
+                .layer(SetResponseHeaderLayer::overriding(
+                    axum::http::header::X_CONTENT_TYPE_OPTIONS,
+                    HeaderValue::from_static("nosniff"),
+                ))
+                .layer(middleware::from_fn(access_log))
+                .layer(CatchPanicLayer::custom(|_| {
+                    ApiError::new(
+                        StatusCode::INTERNAL_SERVER_ERROR,
+                        "internal",
+                        "Internal error",
+                        "the request failed",
+                    )
+                    .into_response()
+                }))
+                .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
+                .load_shed()
+                .concurrency_limit(config.concurrency_limit),
+        )
+}
+
+async fn overloaded(_: BoxError) -> ApiError {
+    ApiError::new(
+        StatusCode::SERVICE_UNAVAILABLE,
+        "overloaded",
+        "Service overloaded",
+        "the server is at its concurrency limit; retry shortly",
+    )
+    .retry_after(1)
+}
+
+async fn not_found(request: Request) -> ApiError {
+    ApiError::new(
+        StatusCode::NOT_FOUND,
+        "not-found",
+        "Not found",
+        format!("no route for {}", request.uri().path()),
+    )
+}
+
+async fn method_not_allowed(request: Request) -> ApiError {
+    ApiError::new(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "method-not-allowed",
+        "Method not allowed",
+        format!("{} is not allowed on {}", request.method(), request.uri().path()),
+    )
+}
+
+async fn request_timeout(State(config): State<Arc<ServiceConfig>>, request: Request, next: Next) -> Response {
+    let limit = Duration::from_millis(config.request_timeout_ms);
+    match tokio::time::timeout(limit, next.run(request)).await {
+        Ok(response) => response,
+        Err(_) => ApiError::new(
+            StatusCode::REQUEST_TIMEOUT,
+            "timeout",
+            "Request timeout",
+            format!(
+                "the request did not complete within {} ms",
+                config.request_timeout_ms
+            ),
+        )
+        .into_response(),
+    }
+}
+
+/// One structured log line per request.
+async fn access_log(request: Request, next: Next) -> Response {
+    let start = Instant::now();
+    let method = request.method().clone();
+    let path = request.uri().path().to_owned();
+    let id = request
+        .extensions()
+        .get::<RequestId>()
+        .and_then(|id| id.header_value().to_str().ok())
+        .unwrap_or("-")
+        .to_owned();
+    let response = next.run(request).await;
+    tracing::info!(
+        request_id = %id,
+        method = %method,
+        path = %path,
+        status = response.status().as_u16(),
+        latency_us = start.elapsed().as_micros() as u64,
+        "request"
+    );
+    response
+}
+
+/// Request ids `<process start in hex>-<sequence>`: unique per process, cheap.
+#[derive(Clone, Default)]
+struct SequentialId {
+    next: Arc<AtomicU64>,
+}
+
+impl MakeRequestId for SequentialId {
+    fn make_request_id<B>(&mut self, _: &axum::http::Request<B>) -> Option<RequestId> {
+        let n = self.next.fetch_add(1, Ordering::Relaxed);
+        let value = format!("{:x}-{n}", *PROCESS_TAG);
+        HeaderValue::from_str(&value).ok().map(RequestId::new)
+    }
+}
+
+static PROCESS_TAG: std::sync::LazyLock<u64> = std::sync::LazyLock::new(|| {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_micros() as u64)
+        .unwrap_or(0)
+});
+
+/// Serves `app` on `listener` until SIGINT or SIGTERM, letting in-flight requests finish.
+pub async fn serve(listener: tokio::net::TcpListener, config: &ServiceConfig) -> std::io::Result<()> {
+    axum::serve(listener, app(config))
+        .with_graceful_shutdown(shutdown_signal())
+        .await
+}
+
+async fn shutdown_signal() {
+    let ctrl_c = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    #[cfg(unix)]
+    let terminate = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut signal) => {
+                signal.recv().await;
+            }
+            Err(_) => std::future::pending::<()>().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let terminate = std::future::pending::<()>();
+    tokio::select! {
+        _ = ctrl_c => {},
+        _ = terminate => {},
+    }
+    tracing::info!("shutdown signal received; finishing in-flight requests");
+}
