@@ -90,8 +90,11 @@ fn point_mass(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> 
             Output::FinalEnergy,
             0.5 * m * final_normal.mul_add(final_normal, vt * vt),
         )?;
-        let loss =
-            finite_output(Output::EnergyLoss, 0.5 * m * ((1.0 - e) * vn) * ((1.0 + e) * -vn))?.max(0.0);
+        let loss = finite_output(
+            Output::EnergyLoss,
+            0.5 * m * ((1.0 - e) * -vn) * ((1.0 + e) * -vn),
+        )?
+        .max(0.0);
         let normalized_loss = finite_output(Output::NormalizedEnergyLoss, (loss / initial).min(1.0))?;
         Some(PlanarEnergy {
             initial,

@@ -347,6 +347,7 @@ pub(crate) fn no_impulse_solution(scene: &PlanarScene, mu: f64, law: Input) -> I
 /// `T_L` is the work of the impulses (Kelvin and Tait, as in the Appendix):
 /// `T_L = −½ [P_n (v_cn + V_cn) + P_t (v_ct + V_ct)]`, which never subtracts
 /// two nearly equal energies.
+#[allow(clippy::too_many_arguments)] // each argument is one named part of the answer
 pub(crate) fn assemble(
     scene: &PlanarScene,
     restitution: f64,

@@ -363,3 +363,101 @@ fn frictionless_normal_impact_matches_the_exact_reference() {
         (fast, exact::frictionless(&inp.exact(), e))
     });
 }
+
+#[test]
+fn torsional_matches_the_exact_reference() {
+    let mut rng = Rng::new(6);
+    let mut errors = Errors::default();
+    for _ in 0..3000 {
+        let m = rng.log_uniform(-100.0, 100.0);
+        let radius = rng.log_uniform(-50.0, 50.0);
+        let i_n = m * radius * radius * rng.range(0.1, 1.0);
+        let vn = -rng.log_uniform(-100.0, 100.0);
+        let rho = radius * rng.range(0.01, 1.0);
+        let (e, ez, mu_z) = (random_e(&mut rng), rng.unit(), rng.range(0.0, 1.0));
+        let switch = mu_z * rho * (1.0 + e) * -vn * m / i_n;
+        let spin = if rng.chance(0.5) {
+            switch * rng.range(-3.0, 3.0)
+        } else {
+            rng.pick(&[switch, -switch])
+        };
+        let impact = restitution::torsional::TorsionalImpact {
+            mass: m,
+            normal_inertia: i_n,
+            normal_velocity: vn,
+            spin,
+            restitution: e,
+            torsional_restitution: ez,
+            torsional_friction: mu_z,
+            pitch_radius: rho,
+        };
+        let Ok(fast) = restitution::torsional::solve(&impact, true) else {
+            continue;
+        };
+        let (spin_x, moment_x, regime, switch_x, loss_x) =
+            exact::torsional(m, i_n, vn, spin, e, ez, mu_z, rho);
+        errors.answered += 1;
+        let scale = spin.abs().max(exact::to_f64(&switch_x));
+        if fast.regime.as_str() == regime {
+            errors.record("Ω_n", ulps(fast.final_spin, &spin_x, &q(scale)));
+            errors.record(
+                "M_n",
+                ulps(fast.torsional_impulse, &moment_x, &(q(scale) * q(i_n))),
+            );
+            errors.record(
+                "T_L",
+                ulps(fast.energy.unwrap().loss, &loss_x, &(q(scale * scale) * q(i_n))),
+            );
+        } else {
+            // Only at the switch itself may rounding pick the other (continuous) branch.
+            errors.refused += 1;
+            assert!(ulps(fast.final_spin, &spin_x, &q(scale)) <= BOUND_ULPS);
+        }
+        errors.record("ω_s", ulps(fast.switch_spin, &switch_x, &switch_x));
+    }
+    errors.assert_within("torsional", BOUND_ULPS);
+}
+
+#[test]
+fn point_mass_matches_the_exact_reference() {
+    let mut rng = Rng::new(7);
+    let mut errors = Errors::default();
+    for _ in 0..2000 {
+        let m = rng.log_uniform(-100.0, 100.0);
+        let speed = rng.log_uniform(-100.0, 100.0);
+        let (vn, vt, e) = (
+            -speed * rng.range(0.01, 2.0),
+            speed * rng.range(-2.0, 2.0),
+            random_e(&mut rng),
+        );
+        let impact = restitution::normal::NormalImpact {
+            mass: m,
+            inertia: None,
+            contact: None,
+            velocity: PlanarVelocity {
+                normal: vn,
+                tangential: vt,
+                angular: 0.0,
+            },
+            restitution: e,
+        };
+        let fast = restitution::normal::solve(&impact, Outputs::ALL).unwrap();
+        let (qm, qvn, qvt, qe) = (q(m), q(vn), q(vt), q(e));
+        let one = q(1.0);
+        let final_vn = -(&qe * &qvn);
+        let pn = &qm * (&one + &qe) * (-&qvn);
+        let loss = q(0.5) * &qm * (&qvn * &qvn - &final_vn * &final_vn);
+        let initial = q(0.5) * &qm * (&qvn * &qvn + &qvt * &qvt);
+        errors.answered += 1;
+        errors.record("V_n", ulps(fast.final_velocity.normal, &final_vn, &final_vn));
+        errors.record("P_n", ulps(fast.impulse.normal, &pn, &pn));
+        let energy = fast.energy.unwrap();
+        errors.record("T_L", ulps(energy.loss, &loss, &loss));
+        errors.record("T_i", ulps(energy.initial, &initial, &initial));
+        errors.record(
+            "T_L*",
+            ulps(energy.normalized_loss, &(&loss / &initial), &(&loss / &initial)),
+        );
+    }
+    errors.assert_within("point mass", BOUND_ULPS);
+}

@@ -80,6 +80,13 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         let mut pointer = pointer_of(error.path());
         let inner = error.inner();
         match inner.classify() {
+            // A data error found before the end may hide malformed JSON further on.
+            serde_json::error::Category::Data
+                if serde_json::from_slice::<serde::de::IgnoredAny>(bytes).is_err() =>
+            {
+                let syntax = serde_json::from_slice::<serde::de::IgnoredAny>(bytes).err();
+                syntax.as_ref().map_or_else(|| malformed(inner), malformed)
+            }
             serde_json::error::Category::Data => {
                 let message = inner.to_string();
                 // serde names a missing field in the message, not in the path.

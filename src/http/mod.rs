@@ -47,6 +47,7 @@ pub const REQUEST_ID: &str = "x-request-id";
                        centre of mass sits at (d_c, d_d) from the contact point; ω turns n toward t. Any \
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
+    components(schemas(problem::Problem, problem::IntervalDto)),
     tags((name = "impacts", description = "One impact per request"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
