@@ -1,0 +1,102 @@
+"""Calls every endpoint through the client generated from openapi/openapi.json.
+
+Usage: python check_client.py BASE_URL   (the generated package must be installed)
+Exits non-zero if any call fails or any value is off.
+"""
+
+import math
+import sys
+
+from restitution_client import Client
+from restitution_client.api.impacts import (
+    impacts_normal,
+    impacts_oblique,
+    impacts_tangential,
+    impacts_torsional,
+)
+from restitution_client.api.service import healthz
+from restitution_client.models import (
+    NormalRequest,
+    ObliqueRequest,
+    PlanarResponse,
+    Problem,
+    TangentialRequest,
+    TorsionalRequest,
+    TorsionalResponse,
+)
+
+FAILURES = []
+
+
+def check(name, condition, detail=""):
+    print(("ok   " if condition else "FAIL ") + name + (f": {detail}" if detail and not condition else ""))
+    if not condition:
+        FAILURES.append(name)
+
+
+def close(a, b, tol=1e-12):
+    return math.isclose(a, b, rel_tol=tol, abs_tol=tol)
+
+
+def maw(vt, **law):
+    request = {
+        "body": {"mass": 1.0, "inertia": 0.00125},
+        "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+        "velocity": {"normal": -1.0, "tangential": vt, "angular": 0.0},
+        "restitution": 0.93,
+    }
+    request.update(law)
+    return request
+
+
+def main(base):
+    client = Client(base_url=base, raise_on_unexpected_status=True)
+
+    health = healthz.sync(client=client)
+    check("healthz", health is not None and health.status == "ok")
+
+    # Point mass: V_n = −e v_n, P_n = m (1 + e)|v_n|.
+    body = NormalRequest.from_dict({"body": {"mass": 2.0}, "velocity": {"normal": -3.0}, "restitution": 0.5})
+    out = impacts_normal.sync(client=client, body=body)
+    check("normal", isinstance(out, PlanarResponse) and out.final_velocity.normal == 1.5
+          and out.impulse.normal == 9.0 and out.regime == "frictionless", repr(out))
+
+    # Maw disc sliding (Fig 3's sliding line): μ = −f, V_ct = v_ct − f (1 + e) 3 |v_n|.
+    out = impacts_oblique.sync(client=client, body=ObliqueRequest.from_dict(maw(2.0, friction=0.123)))
+    check("oblique sliding", isinstance(out, PlanarResponse) and out.impulse_ratio == -0.123
+          and close(out.contact_velocity.final.tangential, 2.0 - 0.123 * 1.93 * 3), repr(out))
+
+    # Maw disc, small slip: sticking with V_ct = 0.
+    out = impacts_oblique.sync(client=client, body=ObliqueRequest.from_dict(maw(0.1, friction=0.123)))
+    check("oblique sticking", isinstance(out, PlanarResponse) and out.regime == "sticking"
+          and out.contact_velocity.final.tangential == 0.0, repr(out))
+
+    # Tangential restitution branch: V_ct = −e_t v_ct.
+    out = impacts_tangential.sync(client=client, body=TangentialRequest.from_dict(
+        maw(0.1, friction=0.123, tangential_restitution=0.34)))
+    check("tangential", isinstance(out, PlanarResponse) and out.regime == "restitution"
+          and close(out.contact_velocity.final.tangential, -0.034), repr(out))
+
+    # Torsional sliding branch (Eq 30 with the moment opposing the spin).
+    request = {
+        "body": {"mass": 0.6, "normal_inertia": 0.003456},
+        "velocity": {"normal": -3.0, "spin": 20.0},
+        "restitution": 0.7,
+        "torsion": {"restitution": 0.2, "friction": 0.3, "pitch_radius": 0.01},
+    }
+    out = impacts_torsional.sync(client=client, body=TorsionalRequest.from_dict(request))
+    switch = 0.3 * 0.01 * 0.6 * 1.7 * 3.0 / 0.003456
+    check("torsional", isinstance(out, TorsionalResponse) and out.regime == "sliding"
+          and close(out.final_velocity.spin, 0.8 * 20.0 - switch) and close(out.switch_spin, switch), repr(out))
+
+    # A documented error comes back as a parsed problem.
+    response = impacts_oblique.sync_detailed(client=client, body=ObliqueRequest.from_dict(maw(2.0, friction=-1.0)))
+    check("problem", response.status_code == 422 and isinstance(response.parsed, Problem)
+          and response.parsed.pointer == "/friction", repr(response.parsed))
+
+    print(f"{len(FAILURES)} failed" if FAILURES else "all client checks passed")
+    return 1 if FAILURES else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1]))
