@@ -65,11 +65,11 @@ pub(crate) fn planar(
     Ok(PlanarEnergy {
         initial: finite_output(Output::InitialEnergy, initial)?,
         r#final: finite_output(Output::FinalEnergy, r#final)?,
-        loss: finite_output(Output::EnergyLoss, m * loss_per_mass)?,
+        loss: finite_output(Output::EnergyLoss, m * loss_per_mass + 0.0)?,
         max_loss: finite_output(Output::MaxEnergyLoss, m * max_per_mass)?,
         normalized_loss: finite_output(
             Output::NormalizedEnergyLoss,
-            (loss_per_mass / max_per_mass).min(1.0),
+            (loss_per_mass / max_per_mass).min(1.0) + 0.0,
         )?,
     })
 }

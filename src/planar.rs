@@ -423,3 +423,83 @@ fn geometry(scene: &PlanarScene) -> (f64, f64, f64) {
         scene.k2,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Body, Contact};
+
+    fn scenes() -> impl Iterator<Item = PlanarScene> {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..2000).map(move |_| {
+            let k = 0.01 + unit();
+            let dd = 2.0 * unit() - 1.0;
+            let w = 4.0 * unit() - 2.0;
+            PlanarScene::new(
+                Body::new(1.0, k * k).unwrap(),
+                Contact::central(dd),
+                PlanarVelocity {
+                    normal: -0.01 - unit(),
+                    tangential: 4.0 * unit() - 2.0,
+                    angular: w,
+                },
+            )
+            .unwrap()
+        })
+    }
+
+    fn within(a: f64, b: f64, scale: f64) -> bool {
+        (a - b).abs() <= 4.0 * f64::EPSILON * scale.max(a.abs()).max(b.abs())
+    }
+
+    #[test]
+    fn central_and_frictionless_paths_agree_with_the_general_path() {
+        for scene in scenes() {
+            let qn = 1.93 * -scene.contact_velocity.normal;
+            for mu in [0.0, 0.1, -0.3, 0.7] {
+                let general = general_ratio_path(&scene, qn, mu, Input::ImpulseRatio).unwrap();
+                let special = if mu == 0.0 {
+                    frictionless_ratio_path(&scene, qn, Input::ImpulseRatio).unwrap()
+                } else {
+                    central_ratio_path(&scene, qn, mu)
+                };
+                let scale = qn * (1.0 + mu.abs()) * (1.0 + 1.0 / scene.k2);
+                assert!(within(general.0, special.0, scale));
+                assert!(within(general.1, special.1, scale));
+                assert!(within(general.2, special.2, scale));
+                assert!(within(general.3, special.3, scale));
+            }
+            for et in [-1.0, 0.0, 0.34, 1.0] {
+                let qt = (1.0 + et) * scene.contact_velocity.tangential;
+                let general = general_target_path(&scene, qn, qt);
+                let special = central_target_path(&scene, qn, qt);
+                let scale = (qn.abs() + qt.abs()) * (1.0 + 1.0 / scene.contact.normal_offset.abs().max(1e-3));
+                assert!(within(general.0, special.0, scale));
+                assert!(within(general.1, special.1, scale));
+                assert!(within(general.2, special.2, scale));
+            }
+        }
+    }
+
+    #[test]
+    fn the_admissible_interval_contains_zero_and_its_bounds_lose_no_energy() {
+        for scene in scenes() {
+            for e in [0.0, 0.5, 1.0] {
+                let interval = admissible_interval(&scene, e);
+                assert!(interval.contains(0.0));
+                for bound in [interval.lower, interval.upper].into_iter().flatten() {
+                    let inside = bound * (1.0 - 1e-9);
+                    let sol = ratio_solution(&scene, e, inside, Input::ImpulseRatio).unwrap();
+                    let work = sol.dn.mul_add(sol.normal_sum, sol.dt * sol.tangential_sum);
+                    assert!(work <= 1e-9 * (sol.dn * scene.contact_velocity.normal).abs());
+                }
+            }
+        }
+    }
+}

@@ -25,6 +25,12 @@ use restitution::{
 /// rounding amplified by `κ_D`; 16 ulps leaves room for that chain.
 const BOUND_ULPS: f64 = 16.0;
 
+thread_local! {
+    /// Set by the adversarial sets that sit exactly on a regime switch, where
+    /// rounding may pick either (continuous) branch.
+    static ALLOW_FLIP: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 #[derive(Clone, Copy, Debug)]
 struct Inputs {
     m: f64,
@@ -198,11 +204,13 @@ fn compare(errors: &mut Errors, inp: &Inputs, fast: &PlanarOutcome, reference: &
         ulps(energy.normalized_loss, &tls, &(&se / &reference.t_max)),
     );
     // The regime is a decision; away from its boundaries it must agree exactly.
-    assert_eq!(
-        fast.regime.as_str(),
-        reference.regime,
-        "regime differs for {inp:?}"
-    );
+    if !ALLOW_FLIP.with(|flip| flip.get()) {
+        assert_eq!(
+            fast.regime.as_str(),
+            reference.regime,
+            "regime differs for {inp:?}"
+        );
+    }
 }
 
 fn kappa(inp: &Inputs, mu: f64) -> Q {
@@ -460,4 +468,65 @@ fn point_mass_matches_the_exact_reference() {
         );
     }
     errors.assert_within("point mass", BOUND_ULPS);
+}
+
+/// Adversarial sets: μ at and next to μ_c, μ next to the root of D, f at and
+/// next to |μ_c| and to the tangential switch (central contacts, where the
+/// bilinear models are continuous).
+#[test]
+fn adversarial_boundaries_match_the_exact_reference() {
+    run_case("μ at and next to μ_c", 11, 1500, |rng, inp, scene| {
+        let e = random_e(rng);
+        let critical = oblique::solve(scene, e, TangentialLaw::Friction(1e300), Outputs::ALL)
+            .ok()
+            .and_then(|o| o.critical_impulse_ratio)
+            .unwrap_or(0.5);
+        let mu = rng.pick(&[critical, critical.next_up(), critical.next_down()]);
+        (
+            oblique::solve(scene, e, TangentialLaw::ImpulseRatio(mu), Outputs::ALL),
+            exact::prescribed(&inp.exact(), e, mu),
+        )
+    });
+    run_case("μ next to the root of D", 12, 1500, |rng, inp, scene| {
+        let e = random_e(rng);
+        let c = scene.contact();
+        let k2 = scene.body().gyration_squared();
+        let product = c.tangential_offset * c.normal_offset;
+        let root = if product != 0.0 {
+            (k2 + c.tangential_offset.powi(2)) / product
+        } else {
+            1.0
+        };
+        let mu = root * (1.0 - rng.pick(&[1e-15, 1e-12, 1e-9, -1e-12]));
+        (
+            oblique::solve(scene, e, TangentialLaw::ImpulseRatio(mu), Outputs::ALL),
+            exact::prescribed(&inp.exact(), e, mu),
+        )
+    });
+    ALLOW_FLIP.with(|flip| flip.set(true));
+    run_case("f at and next to |μ_c|, central", 13, 1500, |rng, inp, _| {
+        let central = Inputs {
+            dc: 0.0,
+            vn: inp.vn + inp.dc * inp.w,
+            ..*inp
+        };
+        let scene = central.scene().expect("central scene");
+        let e = random_e(rng);
+        let et = if rng.chance(0.5) {
+            0.0
+        } else {
+            rng.range(-1.0, 1.0)
+        };
+        let capped = tangential::solve(&scene, e, 1e300, et, Outputs::MINIMAL);
+        let switch = capped.map_or(0.5, |o| o.impulse_ratio.abs());
+        let f = rng.pick(&[switch, switch.next_up(), switch.next_down()]).max(0.0);
+        let capped_name = if et == 0.0 { "sticking" } else { "restitution" };
+        let fast = if et == 0.0 {
+            oblique::solve(&scene, e, TangentialLaw::Friction(f), Outputs::ALL)
+        } else {
+            tangential::solve(&scene, e, f, et, Outputs::ALL)
+        };
+        (fast, exact::bilinear(&central.exact(), e, f, et, capped_name))
+    });
+    ALLOW_FLIP.with(|flip| flip.set(false));
 }
