@@ -80,14 +80,11 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         let mut pointer = pointer_of(error.path());
         let inner = error.inner();
         match inner.classify() {
-            // A data error found before the end may hide malformed JSON further on.
-            serde_json::error::Category::Data
-                if serde_json::from_slice::<serde::de::IgnoredAny>(bytes).is_err() =>
-            {
-                let syntax = serde_json::from_slice::<serde::de::IgnoredAny>(bytes).err();
-                syntax.as_ref().map_or_else(|| malformed(inner), malformed)
-            }
             serde_json::error::Category::Data => {
+                // A data error found before the end may hide malformed JSON further on.
+                if let Err(syntax) = serde_json::from_slice::<serde::de::IgnoredAny>(bytes) {
+                    return malformed(&syntax);
+                }
                 let message = inner.to_string();
                 // serde names a missing field in the message, not in the path.
                 if let Some(field) = quoted_field(&message, "missing field `") {
