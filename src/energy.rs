@@ -9,7 +9,7 @@ use crate::error::{Output, Result, finite_output};
 use crate::scene::{PlanarScene, PlanarVelocity};
 
 /// Kinetic energies of a planar answer.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PlanarEnergy {
     /// Initial kinetic energy `½ m (v_n² + v_t²) + ½ I ω²`.
     pub initial: f64,

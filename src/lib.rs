@@ -13,6 +13,8 @@
 //!   Appendix's kinetic restitution (Eqs 1–19, A-1…A-16);
 //! - [`tangential`]: the bilinear tangential-restitution model (Eqs 20–27);
 //! - [`torsional`]: the bilinear torsional model (Eqs 28–31);
+//! - [`sweep`]: any case over a grid of inputs, in parallel, computing only
+//!   the chosen outputs;
 //!
 //! with the shared pieces in [`scene`] (frame, contact kinematics),
 //! [`planar`] (impulse answers, critical ratio, admissible ratios),
@@ -30,6 +32,7 @@ pub mod normal;
 pub mod oblique;
 pub mod planar;
 pub mod scene;
+pub mod sweep;
 pub mod tangential;
 pub mod torsional;
 

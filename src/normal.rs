@@ -31,21 +31,26 @@ pub fn solve(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> {
         Some(inertia) => {
             let body = Body::new(impact.mass, inertia)?;
             let scene = PlanarScene::new(body, impact.contact.unwrap_or_default(), impact.velocity)?;
-            let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
-            let sol = ratio_solution(&scene, e, 0.0, Input::Restitution)?;
-            assemble(
-                &scene,
-                e,
-                e,
-                Regime::Frictionless,
-                &sol,
-                None,
-                outputs,
-                Input::Restitution,
-            )
+            solve_scene(&scene, impact.restitution, outputs)
         }
         None => point_mass(impact, outputs),
     }
+}
+
+/// Solves a frictionless impact of a rigid body in a validated scene.
+pub fn solve_scene(scene: &PlanarScene, restitution: f64, outputs: Outputs) -> Result<PlanarOutcome> {
+    let e = in_range(Input::Restitution, restitution, 0.0, 1.0)?;
+    let sol = ratio_solution(scene, e, 0.0, Input::Restitution)?;
+    assemble(
+        scene,
+        e,
+        e,
+        Regime::Frictionless,
+        &sol,
+        None,
+        outputs,
+        Input::Restitution,
+    )
 }
 
 /// A point mass: `V_n = −e v_n`, `P_n = m (1 + e) |v_n|`, `V_t = v_t`.

@@ -23,7 +23,7 @@ pub enum TangentialLaw {
 
 /// The Appendix's kinetic restitution: `R = P_n^R / P_n^A` (Eq 9) with the
 /// approach and rebound impulse ratios `μ_A`, `μ_R` (Eqs 12, 13).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct KineticRestitution {
     /// `R`, in `[0, 1]`.
     pub value: f64,

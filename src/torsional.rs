@@ -52,7 +52,7 @@ impl TorsionalRegime {
 }
 
 /// Rotational kinetic energy about the normal axis.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RotationalEnergy {
     /// `½ I_n ω_n²`.
     pub initial: f64,

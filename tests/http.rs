@@ -1,65 +1,14 @@
 //! The real server on 127.0.0.1:0, called over HTTP with reqwest.
 
 use reqwest::StatusCode;
-use restitution::http::{ServiceConfig, app, openapi_json};
+mod common;
+
+use common::server::spawn_app;
+use restitution::http::{ServiceConfig, openapi_json};
 use restitution::oblique::{self, TangentialLaw};
 use restitution::torsional::{self, TorsionalImpact};
 use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
 use serde_json::{Value, json};
-
-struct TestApp {
-    base: String,
-    client: reqwest::Client,
-}
-
-/// Starts the application on an ephemeral loopback port.
-async fn spawn_app(config: ServiceConfig) -> TestApp {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-        .await
-        .expect("bind loopback");
-    let addr = listener.local_addr().expect("local addr");
-    let router = app(&config);
-    tokio::spawn(async move { axum::serve(listener, router).await });
-    TestApp {
-        base: format!("http://{addr}"),
-        client: reqwest::Client::new(),
-    }
-}
-
-impl TestApp {
-    async fn post(&self, path: &str, body: &Value) -> (StatusCode, reqwest::header::HeaderMap, Value) {
-        let response = self
-            .client
-            .post(format!("{}{path}", self.base))
-            .json(body)
-            .send()
-            .await
-            .expect("send");
-        let status = response.status();
-        let headers = response.headers().clone();
-        let value = response.json().await.unwrap_or(Value::Null);
-        (status, headers, value)
-    }
-    async fn post_raw(
-        &self,
-        path: &str,
-        content_type: Option<&str>,
-        body: Vec<u8>,
-    ) -> (StatusCode, String, Value) {
-        let mut request = self.client.post(format!("{}{path}", self.base)).body(body);
-        if let Some(ct) = content_type {
-            request = request.header("content-type", ct);
-        }
-        let response = request.send().await.expect("send");
-        let status = response.status();
-        let ct = response
-            .headers()
-            .get("content-type")
-            .map(|v| v.to_str().unwrap().to_owned())
-            .unwrap_or_default();
-        (status, ct, response.json().await.unwrap_or(Value::Null))
-    }
-}
 
 /// The Maw steel disc: 1 kg, radius 0.05 m, e = 0.93, f = 0.123.
 fn maw_disc(vt: f64) -> Value {

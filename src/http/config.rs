@@ -46,6 +46,19 @@ pub struct ServiceConfig {
     /// Requests served at once; more are refused at once with 503 and Retry-After.
     #[arg(long, env = "RESTITUTION_CONCURRENCY_LIMIT", default_value_t = 512)]
     pub concurrency_limit: usize,
+    /// Most points a streamed sweep (CSV, NDJSON) may have.
+    #[arg(long, env = "RESTITUTION_MAX_SWEEP_POINTS", default_value_t = 10_000_000)]
+    pub max_sweep_points: u64,
+    /// Most points a buffered sweep (JSON table, SVG plot) may have.
+    #[arg(
+        long,
+        env = "RESTITUTION_MAX_BUFFERED_SWEEP_POINTS",
+        default_value_t = 200_000
+    )]
+    pub max_buffered_sweep_points: u64,
+    /// A streamed sweep whose client reads nothing for this long is dropped, in milliseconds.
+    #[arg(long, env = "RESTITUTION_SWEEP_STALL_TIMEOUT_MS", default_value_t = 30_000)]
+    pub sweep_stall_timeout_ms: u64,
 }
 
 impl Default for ServiceConfig {
@@ -55,6 +68,9 @@ impl Default for ServiceConfig {
             body_limit: 1 << 20,
             request_timeout_ms: 10_000,
             concurrency_limit: 512,
+            max_sweep_points: 10_000_000,
+            max_buffered_sweep_points: 200_000,
+            sweep_stall_timeout_ms: 30_000,
         }
     }
 }

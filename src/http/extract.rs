@@ -77,7 +77,6 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         }
     }
     value.map_err(|error| {
-        let mut pointer = pointer_of(error.path());
         let inner = error.inner();
         match inner.classify() {
             serde_json::error::Category::Data => {
@@ -85,23 +84,37 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
                 if let Err(syntax) = serde_json::from_slice::<serde::de::IgnoredAny>(bytes) {
                     return malformed(&syntax);
                 }
-                let message = inner.to_string();
-                // serde names a missing field in the message, not in the path.
-                if let Some(field) = quoted_field(&message, "missing field `") {
-                    pointer.push('/');
-                    pointer.push_str(&field.replace('~', "~0").replace('/', "~1"));
-                }
-                ApiError::new(
-                    StatusCode::UNPROCESSABLE_ENTITY,
-                    "invalid-body",
-                    "Request body does not match the schema",
-                    strip_position(&message),
-                )
-                .at(pointer)
+                schema_mismatch("", error.path(), inner)
             }
             _ => malformed(inner),
         }
     })
+}
+
+/// Deserializes a JSON value that sits at `prefix` in the request body (a
+/// member holding a request of its own); a mismatch is a 422 naming the member
+/// by its pointer from the body's root.
+pub fn parse_value<T: DeserializeOwned>(value: serde_json::Value, prefix: &str) -> Result<T, ApiError> {
+    serde_path_to_error::deserialize(value)
+        .map_err(|error| schema_mismatch(prefix, error.path(), error.inner()))
+}
+
+fn schema_mismatch(prefix: &str, path: &serde_path_to_error::Path, inner: &serde_json::Error) -> ApiError {
+    let mut pointer = prefix.to_owned();
+    pointer.push_str(&pointer_of(path));
+    let message = inner.to_string();
+    // serde names a missing field in the message, not in the path.
+    if let Some(field) = quoted_field(&message, "missing field `") {
+        pointer.push('/');
+        pointer.push_str(&field.replace('~', "~0").replace('/', "~1"));
+    }
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "invalid-body",
+        "Request body does not match the schema",
+        strip_position(&message),
+    )
+    .at(pointer)
 }
 
 fn malformed(error: &serde_json::Error) -> ApiError {

@@ -9,11 +9,10 @@ use utoipa::{IntoResponses, ToSchema};
 use super::dto::{ContactDto, NormalBodyDto, PlanarResponse, RigidBodyDto, TorsionalResponse, VelocityDto};
 use super::extract::ApiJson;
 use super::problem::{ApiError, Problem};
-use crate::normal::{self, NormalImpact};
-use crate::oblique::{self, KineticRestitution, TangentialLaw};
+use crate::error::{ImpactError, Input};
+use crate::oblique::KineticRestitution;
 use crate::planar::{Outputs, PlanarOutcome};
-use crate::scene::{Body, PlanarScene};
-use crate::tangential;
+use crate::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
 use crate::torsional::{self, TorsionalImpact};
 
 /// The error responses every impact endpoint may give (all problem+json).
@@ -213,24 +212,27 @@ pub struct TorsionalRequest {
     pub torsion: TorsionDto,
 }
 
-/// Solves a normal request.
-pub fn solve_normal(req: &NormalRequest, outputs: Outputs) -> Result<PlanarOutcome, ApiError> {
-    let impact = NormalImpact {
+/// The law and inputs of a normal request.
+pub fn normal_input(req: &NormalRequest) -> Result<(PlanarLaw, PlanarPoint), ApiError> {
+    let law = match req.body.inertia {
+        Some(_) => PlanarLaw::Frictionless,
+        None if req.contact.is_some() => {
+            return Err(ImpactError::NeedsInertia {
+                input: Input::TangentialOffset,
+            }
+            .into());
+        }
+        None => PlanarLaw::PointMass,
+    };
+    let point = PlanarPoint {
         mass: req.body.mass,
-        inertia: req.body.inertia,
-        contact: req.contact.map(Into::into),
+        inertia: req.body.inertia.unwrap_or(0.0),
+        contact: req.contact.map(Into::into).unwrap_or_default(),
         velocity: req.velocity.into(),
         restitution: req.restitution,
+        ..PlanarPoint::default()
     };
-    Ok(normal::solve(&impact, outputs)?)
-}
-
-fn scene(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto) -> Result<PlanarScene, ApiError> {
-    Ok(PlanarScene::new(
-        Body::new(body.mass, body.inertia)?,
-        contact.into(),
-        velocity.into(),
-    )?)
+    Ok((law, point))
 }
 
 fn unprocessable(pointer: &str, detail: &str) -> ApiError {
@@ -243,8 +245,15 @@ fn unprocessable(pointer: &str, detail: &str) -> ApiError {
     .at(pointer)
 }
 
-/// Solves an oblique request, checking that exactly one law is given.
-pub fn solve_oblique(req: &ObliqueRequest, outputs: Outputs) -> Result<PlanarOutcome, ApiError> {
+/// The law and inputs of an oblique request, checking that exactly one law is given.
+pub fn oblique_input(req: &ObliqueRequest) -> Result<(PlanarLaw, PlanarPoint), ApiError> {
+    let mut point = PlanarPoint {
+        mass: req.body.mass,
+        inertia: req.body.inertia,
+        contact: req.contact.into(),
+        velocity: req.velocity.into(),
+        ..PlanarPoint::default()
+    };
     if let Some(k) = req.kinetic_restitution {
         if req.restitution.is_some() || req.friction.is_some() || req.impulse_ratio.is_some() {
             return Err(unprocessable(
@@ -252,13 +261,12 @@ pub fn solve_oblique(req: &ObliqueRequest, outputs: Outputs) -> Result<PlanarOut
                 "kinetic_restitution replaces restitution, friction and impulse_ratio: give it alone",
             ));
         }
-        let scene = scene(req.body, req.contact, req.velocity)?;
-        let kinetic = KineticRestitution {
+        point.kinetic = KineticRestitution {
             value: k.value,
             approach_impulse_ratio: k.approach_impulse_ratio,
             rebound_impulse_ratio: k.rebound_impulse_ratio,
         };
-        return Ok(oblique::solve_kinetic(&scene, kinetic, outputs)?);
+        return Ok((PlanarLaw::KineticRestitution, point));
     }
     let Some(e) = req.restitution else {
         return Err(unprocessable(
@@ -266,9 +274,16 @@ pub fn solve_oblique(req: &ObliqueRequest, outputs: Outputs) -> Result<PlanarOut
             "give restitution with friction or impulse_ratio, or kinetic_restitution alone",
         ));
     };
+    point.restitution = e;
     let law = match (req.friction, req.impulse_ratio) {
-        (Some(f), None) => TangentialLaw::Friction(f),
-        (None, Some(mu)) => TangentialLaw::ImpulseRatio(mu),
+        (Some(f), None) => {
+            point.friction = f;
+            PlanarLaw::Friction
+        }
+        (None, Some(mu)) => {
+            point.impulse_ratio = mu;
+            PlanarLaw::ImpulseRatio
+        }
         (Some(_), Some(_)) => {
             return Err(unprocessable(
                 "/impulse_ratio",
@@ -282,28 +297,27 @@ pub fn solve_oblique(req: &ObliqueRequest, outputs: Outputs) -> Result<PlanarOut
             ));
         }
     };
-    let scene = scene(req.body, req.contact, req.velocity)?;
-    Ok(oblique::solve(&scene, e, law, outputs)?)
+    Ok((law, point))
 }
 
-/// Solves a tangential-restitution request.
-pub fn solve_tangential(req: &TangentialRequest, outputs: Outputs) -> Result<PlanarOutcome, ApiError> {
-    let scene = scene(req.body, req.contact, req.velocity)?;
-    Ok(tangential::solve(
-        &scene,
-        req.restitution,
-        req.friction,
-        req.tangential_restitution,
-        outputs,
-    )?)
+/// The law and inputs of a tangential-restitution request.
+pub fn tangential_input(req: &TangentialRequest) -> (PlanarLaw, PlanarPoint) {
+    let point = PlanarPoint {
+        mass: req.body.mass,
+        inertia: req.body.inertia,
+        contact: req.contact.into(),
+        velocity: req.velocity.into(),
+        restitution: req.restitution,
+        friction: req.friction,
+        tangential_restitution: req.tangential_restitution,
+        ..PlanarPoint::default()
+    };
+    (PlanarLaw::TangentialRestitution, point)
 }
 
-/// Solves a torsional request.
-pub fn solve_torsional(
-    req: &TorsionalRequest,
-    energy: bool,
-) -> Result<torsional::TorsionalOutcome, ApiError> {
-    let impact = TorsionalImpact {
+/// The inputs of a torsional request.
+pub fn torsional_input(req: &TorsionalRequest) -> TorsionalImpact {
+    TorsionalImpact {
         mass: req.body.mass,
         normal_inertia: req.body.normal_inertia,
         normal_velocity: req.velocity.normal,
@@ -312,8 +326,12 @@ pub fn solve_torsional(
         torsional_restitution: req.torsion.restitution,
         torsional_friction: req.torsion.friction,
         pitch_radius: req.torsion.pitch_radius,
-    };
-    Ok(torsional::solve(&impact, energy)?)
+    }
+}
+
+fn solve_planar(input: Result<(PlanarLaw, PlanarPoint), ApiError>) -> Result<PlanarOutcome, ApiError> {
+    let (law, point) = input?;
+    Ok(solve_point(law, &point, Outputs::ALL)?)
 }
 
 /// Normal impact of a point mass or a frictionless rigid body (section 2.1).
@@ -325,10 +343,9 @@ pub fn solve_torsional(
     responses((status = 200, description = "The impact's outcome", body = PlanarResponse), ImpactProblems)
 )]
 pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_normal(
+    Ok(Json(PlanarResponse::from_outcome(&solve_planar(normal_input(
         &req,
-        Outputs::ALL,
-    )?)))
+    ))?)))
 }
 
 /// Oblique impact with a prescribed impulse ratio, Coulomb friction, or two-phase kinetic restitution (Eqs 1–19, Appendix).
@@ -342,10 +359,9 @@ pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json
 pub async fn impacts_oblique(
     ApiJson(req): ApiJson<ObliqueRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_oblique(
+    Ok(Json(PlanarResponse::from_outcome(&solve_planar(oblique_input(
         &req,
-        Outputs::ALL,
-    )?)))
+    ))?)))
 }
 
 /// Impact with tangential restitution: the bilinear model of Eqs 20–27.
@@ -359,10 +375,9 @@ pub async fn impacts_oblique(
 pub async fn impacts_tangential(
     ApiJson(req): ApiJson<TangentialRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_tangential(
-        &req,
-        Outputs::ALL,
-    )?)))
+    Ok(Json(PlanarResponse::from_outcome(&solve_planar(Ok(
+        tangential_input(&req),
+    ))?)))
 }
 
 /// Impact with torsional restitution: the bilinear model of Eqs 28–31.
@@ -376,7 +391,8 @@ pub async fn impacts_tangential(
 pub async fn impacts_torsional(
     ApiJson(req): ApiJson<TorsionalRequest>,
 ) -> Result<Json<TorsionalResponse>, ApiError> {
-    Ok(Json(TorsionalResponse::from_outcome(&solve_torsional(
-        &req, true,
+    Ok(Json(TorsionalResponse::from_outcome(&torsional::solve(
+        &torsional_input(&req),
+        true,
     )?)))
 }

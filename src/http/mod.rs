@@ -10,6 +10,8 @@ pub mod dto;
 pub mod extract;
 pub mod impacts;
 pub mod problem;
+mod svg;
+pub mod sweeps;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -48,7 +50,7 @@ pub const REQUEST_ID: &str = "x-request-id";
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
-    tags((name = "impacts", description = "One impact per request"), (name = "service", description = "Liveness"))
+    tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
 
@@ -71,6 +73,7 @@ fn routes() -> OpenApiRouter {
         .routes(routes!(impacts::impacts_oblique))
         .routes(routes!(impacts::impacts_tangential))
         .routes(routes!(impacts::impacts_torsional))
+        .routes(routes!(sweeps::sweeps))
         .routes(routes!(healthz))
 }
 
@@ -98,6 +101,7 @@ pub fn app(config: &ServiceConfig) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(config.body_limit))
+        .layer(axum::Extension(limits.clone()))
         .layer(middleware::from_fn_with_state(limits, request_timeout))
         .layer(
             ServiceBuilder::new()

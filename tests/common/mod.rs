@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod reference;
+pub mod server;
 
 /// A small deterministic generator (SplitMix64) so failures reproduce.
 pub struct Rng(u64);

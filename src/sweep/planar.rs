@@ -1,0 +1,420 @@
+//! Sweeps of the planar cases (normal, oblique, tangential restitution).
+
+use super::{Cell, SweepCase};
+use crate::error::{ImpactError, Result};
+use crate::normal::{self, NormalImpact};
+use crate::oblique::{self, KineticRestitution, TangentialLaw};
+use crate::planar::{Outputs, PlanarOutcome};
+use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
+use crate::tangential;
+
+/// Which planar model and tangential law a sweep evaluates; fixed for the sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlanarLaw {
+    /// Normal impact of a point mass (no inertia, contact or spin).
+    PointMass,
+    /// Normal impact of a rigid body on a frictionless contact.
+    Frictionless,
+    /// A prescribed impulse ratio `μ`.
+    ImpulseRatio,
+    /// Coulomb friction `f`.
+    Friction,
+    /// The bilinear tangential-restitution model (`f`, `e_t`).
+    TangentialRestitution,
+    /// The Appendix's two-phase kinetic model (`R`, `μ_A`, `μ_R`).
+    KineticRestitution,
+}
+
+impl PlanarLaw {
+    /// Whether the law reads `param`.
+    pub fn reads(self, param: PlanarParam) -> bool {
+        use PlanarParam as P;
+        match param {
+            P::Mass | P::NormalVelocity | P::TangentialVelocity | P::AngularVelocity => true,
+            P::Inertia | P::TangentialOffset | P::NormalOffset => self != PlanarLaw::PointMass,
+            P::Restitution => self != PlanarLaw::KineticRestitution,
+            P::Friction => matches!(self, PlanarLaw::Friction | PlanarLaw::TangentialRestitution),
+            P::ImpulseRatio => self == PlanarLaw::ImpulseRatio,
+            P::TangentialRestitution => self == PlanarLaw::TangentialRestitution,
+            P::KineticRestitution | P::ApproachImpulseRatio | P::ReboundImpulseRatio => {
+                self == PlanarLaw::KineticRestitution
+            }
+        }
+    }
+
+    /// The law's name, for messages.
+    pub fn describe(self) -> &'static str {
+        match self {
+            PlanarLaw::PointMass => "a point mass",
+            PlanarLaw::Frictionless => "a frictionless rigid body",
+            PlanarLaw::ImpulseRatio => "a prescribed impulse ratio",
+            PlanarLaw::Friction => "Coulomb friction",
+            PlanarLaw::TangentialRestitution => "tangential restitution",
+            PlanarLaw::KineticRestitution => "two-phase kinetic restitution",
+        }
+    }
+}
+
+/// Every input of a planar impact; a law reads the ones it needs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarPoint {
+    /// Mass `m`.
+    pub mass: f64,
+    /// Centroidal moment of inertia `I` (unused for a point mass).
+    pub inertia: f64,
+    /// Contact geometry.
+    pub contact: Contact,
+    /// Initial velocities.
+    pub velocity: PlanarVelocity,
+    /// Kinematic coefficient of restitution `e`.
+    pub restitution: f64,
+    /// Coulomb friction `f`.
+    pub friction: f64,
+    /// Prescribed impulse ratio `μ`.
+    pub impulse_ratio: f64,
+    /// Tangential coefficient of restitution `e_t`.
+    pub tangential_restitution: f64,
+    /// The two-phase kinetic model.
+    pub kinetic: KineticRestitution,
+}
+
+/// An input of a planar impact that an axis can set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PlanarParam {
+    /// `m`.
+    Mass,
+    /// `I`.
+    Inertia,
+    /// `d_c`.
+    TangentialOffset,
+    /// `d_d`.
+    NormalOffset,
+    /// `v_n`.
+    NormalVelocity,
+    /// `v_t`.
+    TangentialVelocity,
+    /// `ω`.
+    AngularVelocity,
+    /// `e`.
+    Restitution,
+    /// `f`.
+    Friction,
+    /// `μ`.
+    ImpulseRatio,
+    /// `e_t`.
+    TangentialRestitution,
+    /// `R`.
+    KineticRestitution,
+    /// `μ_A`.
+    ApproachImpulseRatio,
+    /// `μ_R`.
+    ReboundImpulseRatio,
+}
+
+impl PlanarParam {
+    /// Whether the parameter is part of the scene (body, contact, velocity).
+    pub fn is_scene(self) -> bool {
+        matches!(
+            self,
+            PlanarParam::Mass
+                | PlanarParam::Inertia
+                | PlanarParam::TangentialOffset
+                | PlanarParam::NormalOffset
+                | PlanarParam::NormalVelocity
+                | PlanarParam::TangentialVelocity
+                | PlanarParam::AngularVelocity
+        )
+    }
+}
+
+/// An output of a planar impact that a column can show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PlanarColumn {
+    /// `V_n`.
+    FinalNormalVelocity,
+    /// `V_t`.
+    FinalTangentialVelocity,
+    /// `Ω`.
+    FinalAngularVelocity,
+    /// `v_cn`.
+    InitialContactNormal,
+    /// `v_ct`.
+    InitialContactTangential,
+    /// `V_cn`.
+    FinalContactNormal,
+    /// `V_ct`.
+    FinalContactTangential,
+    /// `P_n`.
+    NormalImpulse,
+    /// `P_t`.
+    TangentialImpulse,
+    /// `μ`.
+    ImpulseRatio,
+    /// `μ_c`.
+    CriticalImpulseRatio,
+    /// `e`.
+    Restitution,
+    /// `R`.
+    KineticRestitution,
+    /// The regime's name.
+    Regime,
+    /// Initial kinetic energy.
+    InitialEnergy,
+    /// Final kinetic energy.
+    FinalEnergy,
+    /// `T_L`.
+    EnergyLoss,
+    /// `T_M`.
+    MaxEnergyLoss,
+    /// `T_L*`.
+    NormalizedEnergyLoss,
+}
+
+impl PlanarColumn {
+    fn needs_energy(self) -> bool {
+        matches!(
+            self,
+            PlanarColumn::InitialEnergy
+                | PlanarColumn::FinalEnergy
+                | PlanarColumn::EnergyLoss
+                | PlanarColumn::MaxEnergyLoss
+                | PlanarColumn::NormalizedEnergyLoss
+        )
+    }
+
+    /// The column's value in an outcome computed with the outputs it needs.
+    fn cell(self, o: &PlanarOutcome) -> Cell {
+        let energy = o.energy.unwrap_or_default();
+        Cell::Number(match self {
+            PlanarColumn::FinalNormalVelocity => o.final_velocity.normal,
+            PlanarColumn::FinalTangentialVelocity => o.final_velocity.tangential,
+            PlanarColumn::FinalAngularVelocity => o.final_velocity.angular,
+            PlanarColumn::InitialContactNormal => o.contact_velocity.initial.normal,
+            PlanarColumn::InitialContactTangential => o.contact_velocity.initial.tangential,
+            PlanarColumn::FinalContactNormal => o.contact_velocity.r#final.normal,
+            PlanarColumn::FinalContactTangential => o.contact_velocity.r#final.tangential,
+            PlanarColumn::NormalImpulse => o.impulse.normal,
+            PlanarColumn::TangentialImpulse => o.impulse.tangential,
+            PlanarColumn::ImpulseRatio => o.impulse_ratio,
+            PlanarColumn::CriticalImpulseRatio => o.critical_impulse_ratio.unwrap_or(f64::NAN),
+            PlanarColumn::Restitution => o.restitution,
+            PlanarColumn::KineticRestitution => o.kinetic_restitution,
+            PlanarColumn::Regime => return Cell::Text(o.regime.as_str()),
+            PlanarColumn::InitialEnergy => energy.initial,
+            PlanarColumn::FinalEnergy => energy.r#final,
+            PlanarColumn::EnergyLoss => energy.loss,
+            PlanarColumn::MaxEnergyLoss => energy.max_loss,
+            PlanarColumn::NormalizedEnergyLoss => energy.normalized_loss,
+        })
+    }
+}
+
+/// A planar case prepared for a sweep: the law, the outputs its columns need,
+/// and the scene when no axis changes it (validated once, not per point).
+#[derive(Debug, Clone)]
+pub struct PlanarSweep {
+    law: PlanarLaw,
+    columns: Vec<PlanarColumn>,
+    outputs: Outputs,
+    fixed_scene: Option<Result<PlanarScene>>,
+}
+
+impl PlanarSweep {
+    /// Prepares `law` for a sweep from `base` in which the axes set `swept`,
+    /// computing only what `columns` need.
+    pub fn new(
+        law: PlanarLaw,
+        base: &PlanarPoint,
+        swept: &[PlanarParam],
+        columns: Vec<PlanarColumn>,
+    ) -> Self {
+        let outputs = Outputs {
+            critical_impulse_ratio: columns.contains(&PlanarColumn::CriticalImpulseRatio),
+            energy: columns.iter().any(|c| c.needs_energy()),
+        };
+        let fixed_scene =
+            (law != PlanarLaw::PointMass && !swept.iter().any(|p| p.is_scene())).then(|| scene(base));
+        PlanarSweep {
+            law,
+            columns,
+            outputs,
+            fixed_scene,
+        }
+    }
+
+    /// The optional outputs the columns need.
+    pub fn outputs(&self) -> Outputs {
+        self.outputs
+    }
+
+    /// Whether the scene is prepared once for the whole sweep.
+    pub fn has_fixed_scene(&self) -> bool {
+        self.fixed_scene.is_some()
+    }
+
+    /// Solves one point with every output the columns need.
+    pub fn solve(&self, p: &PlanarPoint) -> Result<PlanarOutcome> {
+        match &self.fixed_scene {
+            Some(Ok(scene)) => solve_in_scene(self.law, scene, p, self.outputs),
+            Some(Err(e)) => Err(e.clone()),
+            None => solve_point(self.law, p, self.outputs),
+        }
+    }
+}
+
+/// Solves one planar impact under `law`, computing the optional `outputs`.
+pub fn solve_point(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
+    if law == PlanarLaw::PointMass {
+        let impact = NormalImpact {
+            mass: p.mass,
+            inertia: None,
+            contact: None,
+            velocity: p.velocity,
+            restitution: p.restitution,
+        };
+        return normal::solve(&impact, outputs);
+    }
+    solve_in_scene(law, &scene(p)?, p, outputs)
+}
+
+/// Solves `law` in a scene already built from `p`'s body, contact and velocity.
+fn solve_in_scene(
+    law: PlanarLaw,
+    scene: &PlanarScene,
+    p: &PlanarPoint,
+    outputs: Outputs,
+) -> Result<PlanarOutcome> {
+    match law {
+        PlanarLaw::PointMass | PlanarLaw::Frictionless => normal::solve_scene(scene, p.restitution, outputs),
+        PlanarLaw::ImpulseRatio => oblique::solve(
+            scene,
+            p.restitution,
+            TangentialLaw::ImpulseRatio(p.impulse_ratio),
+            outputs,
+        ),
+        PlanarLaw::Friction => {
+            oblique::solve(scene, p.restitution, TangentialLaw::Friction(p.friction), outputs)
+        }
+        PlanarLaw::TangentialRestitution => tangential::solve(
+            scene,
+            p.restitution,
+            p.friction,
+            p.tangential_restitution,
+            outputs,
+        ),
+        PlanarLaw::KineticRestitution => oblique::solve_kinetic(scene, p.kinetic, outputs),
+    }
+}
+
+fn scene(p: &PlanarPoint) -> Result<PlanarScene> {
+    PlanarScene::new(Body::new(p.mass, p.inertia)?, p.contact, p.velocity)
+}
+
+impl SweepCase for PlanarSweep {
+    type Point = PlanarPoint;
+    type Param = PlanarParam;
+
+    fn set(p: &mut PlanarPoint, param: PlanarParam, v: f64) {
+        match param {
+            PlanarParam::Mass => p.mass = v,
+            PlanarParam::Inertia => p.inertia = v,
+            PlanarParam::TangentialOffset => p.contact.tangential_offset = v,
+            PlanarParam::NormalOffset => p.contact.normal_offset = v,
+            PlanarParam::NormalVelocity => p.velocity.normal = v,
+            PlanarParam::TangentialVelocity => p.velocity.tangential = v,
+            PlanarParam::AngularVelocity => p.velocity.angular = v,
+            PlanarParam::Restitution => p.restitution = v,
+            PlanarParam::Friction => p.friction = v,
+            PlanarParam::ImpulseRatio => p.impulse_ratio = v,
+            PlanarParam::TangentialRestitution => p.tangential_restitution = v,
+            PlanarParam::KineticRestitution => p.kinetic.value = v,
+            PlanarParam::ApproachImpulseRatio => p.kinetic.approach_impulse_ratio = v,
+            PlanarParam::ReboundImpulseRatio => p.kinetic.rebound_impulse_ratio = v,
+        }
+    }
+
+    fn columns(&self) -> usize {
+        self.columns.len()
+    }
+
+    fn evaluate(&self, p: &PlanarPoint, cells: &mut [Cell]) -> std::result::Result<(), ImpactError> {
+        let outcome = self.solve(p)?;
+        for (cell, column) in cells.iter_mut().zip(&self.columns) {
+            *cell = column.cell(&outcome);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::{Axis, AxisValues, Combine, Sweep};
+
+    fn maw() -> PlanarPoint {
+        PlanarPoint {
+            mass: 1.0,
+            inertia: 0.5 * 0.05 * 0.05,
+            contact: Contact::central(0.05),
+            velocity: PlanarVelocity {
+                normal: -1.0,
+                tangential: 2.0,
+                angular: 0.0,
+            },
+            restitution: 0.93,
+            friction: 0.123,
+            tangential_restitution: 0.34,
+            ..PlanarPoint::default()
+        }
+    }
+
+    #[test]
+    fn a_fixed_scene_gives_the_same_answers_as_one_built_per_point() {
+        let base = maw();
+        let columns = vec![PlanarColumn::FinalContactTangential, PlanarColumn::EnergyLoss];
+        let fixed = PlanarSweep::new(
+            PlanarLaw::TangentialRestitution,
+            &base,
+            &[PlanarParam::Friction],
+            columns.clone(),
+        );
+        let per_point = PlanarSweep::new(
+            PlanarLaw::TangentialRestitution,
+            &base,
+            &[PlanarParam::TangentialVelocity],
+            columns,
+        );
+        assert!(fixed.has_fixed_scene() && !per_point.has_fixed_scene());
+        assert!(fixed.outputs().energy && !fixed.outputs().critical_impulse_ratio);
+        for f in [0.0, 0.05, 0.123, 0.5] {
+            let p = PlanarPoint { friction: f, ..base };
+            assert_eq!(fixed.solve(&p), per_point.solve(&p));
+            assert_eq!(
+                fixed.solve(&p).unwrap(),
+                tangential::solve(&scene(&p).unwrap(), 0.93, f, 0.34, fixed.outputs()).unwrap()
+            );
+        }
+    }
+
+    #[test]
+    fn invalid_points_fail_alone() {
+        let case = PlanarSweep::new(
+            PlanarLaw::Friction,
+            &maw(),
+            &[PlanarParam::NormalVelocity],
+            vec![PlanarColumn::Regime],
+        );
+        let axes = vec![Axis {
+            param: PlanarParam::NormalVelocity,
+            values: AxisValues::List(vec![-1.0, 0.5, -2.0]),
+        }];
+        let sweep = Sweep::new(case, maw(), axes, Combine::Product, 10).unwrap();
+        let mut outcomes = Vec::new();
+        sweep.for_each_in(0..3, |row| {
+            outcomes.push(row.outcome.map(|c| c.to_vec()).map_err(|e| e.title()))
+        });
+        assert_eq!(outcomes[0], Ok(vec![Cell::Text("sliding")]));
+        assert_eq!(outcomes[1], Err("Contact is not approaching"));
+        assert_eq!(outcomes[2], Ok(vec![Cell::Text("sliding")]));
+    }
+}

@@ -1,0 +1,118 @@
+//! Sweeps of the torsional case.
+
+use super::{Cell, SweepCase};
+use crate::error::ImpactError;
+use crate::torsional::{self, TorsionalImpact, TorsionalOutcome};
+
+/// An input of a torsional impact that an axis can set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TorsionalParam {
+    /// `m`.
+    Mass,
+    /// `I_n`.
+    NormalInertia,
+    /// `v_n`.
+    NormalVelocity,
+    /// `ω_n`.
+    Spin,
+    /// `e`.
+    Restitution,
+    /// `e_z`.
+    TorsionalRestitution,
+    /// `μ_z`.
+    TorsionalFriction,
+    /// `ρ_p`.
+    PitchRadius,
+}
+
+/// An output of a torsional impact that a column can show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TorsionalColumn {
+    /// `V_n`.
+    FinalNormalVelocity,
+    /// `Ω_n`.
+    FinalSpin,
+    /// `P_n`.
+    NormalImpulse,
+    /// `M_n`.
+    TorsionalImpulse,
+    /// The regime's name.
+    Regime,
+    /// `ω_s` (Eq 31).
+    SwitchSpin,
+    /// Initial rotational energy.
+    InitialEnergy,
+    /// Final rotational energy.
+    FinalEnergy,
+    /// Rotational energy lost.
+    EnergyLoss,
+}
+
+impl TorsionalColumn {
+    fn needs_energy(self) -> bool {
+        matches!(
+            self,
+            TorsionalColumn::InitialEnergy | TorsionalColumn::FinalEnergy | TorsionalColumn::EnergyLoss
+        )
+    }
+
+    fn cell(self, o: &TorsionalOutcome) -> Cell {
+        let energy = o.energy.unwrap_or_default();
+        Cell::Number(match self {
+            TorsionalColumn::FinalNormalVelocity => o.final_normal_velocity,
+            TorsionalColumn::FinalSpin => o.final_spin,
+            TorsionalColumn::NormalImpulse => o.normal_impulse,
+            TorsionalColumn::TorsionalImpulse => o.torsional_impulse,
+            TorsionalColumn::Regime => return Cell::Text(o.regime.as_str()),
+            TorsionalColumn::SwitchSpin => o.switch_spin,
+            TorsionalColumn::InitialEnergy => energy.initial,
+            TorsionalColumn::FinalEnergy => energy.r#final,
+            TorsionalColumn::EnergyLoss => energy.loss,
+        })
+    }
+}
+
+/// The torsional case prepared for a sweep: energies only when a column needs them.
+#[derive(Debug, Clone)]
+pub struct TorsionalSweep {
+    columns: Vec<TorsionalColumn>,
+    energy: bool,
+}
+
+impl TorsionalSweep {
+    /// Prepares a sweep computing only what `columns` need.
+    pub fn new(columns: Vec<TorsionalColumn>) -> Self {
+        let energy = columns.iter().any(|c| c.needs_energy());
+        TorsionalSweep { columns, energy }
+    }
+}
+
+impl SweepCase for TorsionalSweep {
+    type Point = TorsionalImpact;
+    type Param = TorsionalParam;
+
+    fn set(p: &mut TorsionalImpact, param: TorsionalParam, v: f64) {
+        match param {
+            TorsionalParam::Mass => p.mass = v,
+            TorsionalParam::NormalInertia => p.normal_inertia = v,
+            TorsionalParam::NormalVelocity => p.normal_velocity = v,
+            TorsionalParam::Spin => p.spin = v,
+            TorsionalParam::Restitution => p.restitution = v,
+            TorsionalParam::TorsionalRestitution => p.torsional_restitution = v,
+            TorsionalParam::TorsionalFriction => p.torsional_friction = v,
+            TorsionalParam::PitchRadius => p.pitch_radius = v,
+        }
+    }
+
+    fn columns(&self) -> usize {
+        self.columns.len()
+    }
+
+    fn evaluate(&self, p: &TorsionalImpact, cells: &mut [Cell]) -> Result<(), ImpactError> {
+        let outcome = torsional::solve(p, self.energy)?;
+        for (cell, column) in cells.iter_mut().zip(&self.columns) {
+            *cell = column.cell(&outcome);
+        }
+        Ok(())
+    }
+}

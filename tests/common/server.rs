@@ -1,0 +1,84 @@
+//! The real server on an ephemeral loopback port, called over HTTP with reqwest.
+
+use reqwest::StatusCode;
+use restitution::http::{ServiceConfig, app};
+use serde_json::Value;
+
+pub struct TestApp {
+    pub addr: std::net::SocketAddr,
+    pub base: String,
+    pub client: reqwest::Client,
+}
+
+/// Starts the application on an ephemeral loopback port.
+pub async fn spawn_app(config: ServiceConfig) -> TestApp {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+        .await
+        .expect("bind loopback");
+    let addr = listener.local_addr().expect("local addr");
+    let router = app(&config);
+    tokio::spawn(async move { axum::serve(listener, router).await });
+    TestApp {
+        addr,
+        base: format!("http://{addr}"),
+        client: reqwest::Client::new(),
+    }
+}
+
+impl TestApp {
+    pub async fn post(&self, path: &str, body: &Value) -> (StatusCode, reqwest::header::HeaderMap, Value) {
+        let response = self
+            .client
+            .post(format!("{}{path}", self.base))
+            .json(body)
+            .send()
+            .await
+            .expect("send");
+        let status = response.status();
+        let headers = response.headers().clone();
+        let value = response.json().await.unwrap_or(Value::Null);
+        (status, headers, value)
+    }
+    pub async fn post_raw(
+        &self,
+        path: &str,
+        content_type: Option<&str>,
+        body: Vec<u8>,
+    ) -> (StatusCode, String, Value) {
+        let mut request = self.client.post(format!("{}{path}", self.base)).body(body);
+        if let Some(ct) = content_type {
+            request = request.header("content-type", ct);
+        }
+        let response = request.send().await.expect("send");
+        let status = response.status();
+        let ct = response
+            .headers()
+            .get("content-type")
+            .map(|v| v.to_str().unwrap().to_owned())
+            .unwrap_or_default();
+        (status, ct, response.json().await.unwrap_or(Value::Null))
+    }
+}
+
+impl TestApp {
+    /// Posts JSON with an `Accept` header; returns status, headers and the raw body.
+    pub async fn post_accept(
+        &self,
+        path: &str,
+        accept: &str,
+        body: &Value,
+    ) -> (StatusCode, reqwest::header::HeaderMap, Vec<u8>) {
+        let response = self
+            .client
+            .post(format!("{}{path}", self.base))
+            .header("accept", accept)
+            .json(body)
+            .send()
+            .await
+            .expect("send");
+        let status = response.status();
+        let headers = response.headers().clone();
+        let bytes = response.bytes().await.expect("body").to_vec();
+        (status, headers, bytes)
+    }
+}

@@ -1,0 +1,511 @@
+//! `POST /v1/sweeps` over loopback: every format, both combine modes, per-point
+//! errors, limits, streaming past the buffered limit, and the paper's figures.
+
+mod common;
+
+use std::time::{Duration, Instant};
+
+use common::server::{TestApp, spawn_app};
+use reqwest::StatusCode;
+use restitution::http::ServiceConfig;
+use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
+use restitution::{Contact, Outputs, PlanarVelocity};
+use serde_json::{Value, json};
+
+fn maw_base() -> Value {
+    json!({
+        "body": {"mass": 1.0, "inertia": 0.00125},
+        "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+        "velocity": {"normal": -1.0, "tangential": 0.0, "angular": 0.0},
+        "restitution": 0.93, "friction": 0.123, "tangential_restitution": 0.34
+    })
+}
+
+fn maw_point(vt: f64, f: f64) -> PlanarPoint {
+    PlanarPoint {
+        mass: 1.0,
+        inertia: 0.00125,
+        contact: Contact::central(0.05),
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: vt,
+            angular: 0.0,
+        },
+        restitution: 0.93,
+        friction: f,
+        tangential_restitution: 0.34,
+        ..PlanarPoint::default()
+    }
+}
+
+fn two_axis_sweep() -> Value {
+    json!({
+        "case": "tangential",
+        "base": maw_base(),
+        "axes": [
+            {"path": "/velocity/tangential", "linspace": {"start": -1.0, "stop": 5.0, "count": 61}},
+            {"path": "/friction", "values": [0.1, 0.123, 0.2]}
+        ],
+        "outputs": ["/contact_velocity/final/tangential", "/regime", "/energy/loss"]
+    })
+}
+
+async fn json_table(app: &TestApp, body: &Value) -> Value {
+    let (status, headers, bytes) = app.post_accept("/v1/sweeps", "application/json", body).await;
+    assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&bytes));
+    assert_eq!(headers["content-type"], "application/json");
+    serde_json::from_slice(&bytes).expect("a JSON table")
+}
+
+#[tokio::test]
+async fn json_table_is_in_product_order_and_matches_the_library_bit_for_bit() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let table = json_table(&app, &two_axis_sweep()).await;
+    assert_eq!(
+        table["columns"],
+        json!([
+            "/velocity/tangential",
+            "/friction",
+            "/contact_velocity/final/tangential",
+            "/regime",
+            "/energy/loss",
+            "error"
+        ])
+    );
+    assert_eq!(table["points"], 183);
+    assert_eq!(table["errors"], 0);
+    assert_eq!(table["precision"], "fast");
+    let rows = table["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 183);
+    let frictions = [0.1, 0.123, 0.2];
+    for (i, row) in rows.iter().enumerate() {
+        let vt = row[0].as_f64().unwrap();
+        let f = row[1].as_f64().unwrap();
+        // The first axis varies slowest; linspace(−1, 5, 61) steps by exactly 0.1 (one rounding).
+        assert_eq!(f, frictions[i % 3]);
+        assert_eq!(vt, ((i / 3) as f64).mul_add(0.1, -1.0));
+        let expected =
+            solve_point(PlanarLaw::TangentialRestitution, &maw_point(vt, f), Outputs::ALL).unwrap();
+        assert_eq!(
+            row[2].as_f64().unwrap().to_bits(),
+            expected.contact_velocity.r#final.tangential.to_bits()
+        );
+        assert_eq!(row[3], expected.regime.as_str());
+        assert_eq!(
+            row[4].as_f64().unwrap().to_bits(),
+            expected.energy.unwrap().loss.to_bits()
+        );
+        assert_eq!(row[5], Value::Null);
+    }
+}
+
+#[tokio::test]
+async fn csv_and_ndjson_carry_the_same_rows_as_the_table() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = two_axis_sweep();
+    let table = json_table(&app, &body).await;
+    let rows = table["rows"].as_array().unwrap();
+
+    let (status, headers, csv) = app.post_accept("/v1/sweeps", "text/csv", &body).await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(headers["content-type"].to_str().unwrap().starts_with("text/csv"));
+    assert_eq!(headers["x-sweep-points"], "183");
+    let text = String::from_utf8(csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "/velocity/tangential,/friction,/contact_velocity/final/tangential,/regime,/energy/loss,error"
+    );
+    assert_eq!(lines.len(), 184);
+    for (line, row) in lines[1..].iter().zip(rows) {
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(fields.len(), 6);
+        for k in [0, 1, 2, 4] {
+            assert_eq!(fields[k].parse::<f64>().unwrap(), row[k].as_f64().unwrap());
+        }
+        assert_eq!(fields[3], row[3].as_str().unwrap());
+        assert_eq!(fields[5], "");
+    }
+
+    let (status, headers, ndjson) = app.post_accept("/v1/sweeps", "application/x-ndjson", &body).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(headers["content-type"], "application/x-ndjson");
+    let objects: Vec<Value> = String::from_utf8(ndjson)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(objects.len(), 183);
+    let columns = table["columns"].as_array().unwrap();
+    for (object, row) in objects.iter().zip(rows) {
+        for (k, column) in columns.iter().enumerate() {
+            assert_eq!(object[column.as_str().unwrap()], row[k]);
+        }
+    }
+}
+
+#[tokio::test]
+async fn zip_pairs_axes_and_refuses_unequal_lengths() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let mut body = json!({
+        "case": "tangential",
+        "base": maw_base(),
+        "axes": [
+            {"path": "/velocity/tangential", "values": [0.1, 1.0, 2.0]},
+            {"path": "/friction", "values": [0.1, 0.123, 0.2]}
+        ],
+        "combine": "zip",
+        "outputs": ["/final_velocity"]
+    });
+    let table = json_table(&app, &body).await;
+    assert_eq!(table["points"], 3);
+    assert_eq!(
+        table["columns"],
+        json!([
+            "/velocity/tangential",
+            "/friction",
+            "/final_velocity/normal",
+            "/final_velocity/tangential",
+            "/final_velocity/angular",
+            "error"
+        ])
+    );
+    let row = &table["rows"][2];
+    assert_eq!((row[0].as_f64(), row[1].as_f64()), (Some(2.0), Some(0.2)));
+    let expected = solve_point(
+        PlanarLaw::TangentialRestitution,
+        &maw_point(2.0, 0.2),
+        Outputs::ALL,
+    )
+    .unwrap();
+    assert_eq!(row[3].as_f64().unwrap(), expected.final_velocity.tangential);
+
+    body["axes"][1]["values"] = json!([0.1, 0.2]);
+    let (status, _, problem) = app.post("/v1/sweeps", &body).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/axes/1");
+    assert!(problem["detail"].as_str().unwrap().contains("equal length"));
+}
+
+#[tokio::test]
+async fn invalid_points_carry_an_error_and_do_not_fail_the_sweep() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "oblique",
+        "base": {
+            "body": {"mass": 1.0, "inertia": 0.00125},
+            "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+            "velocity": {"normal": -1.0, "tangential": 2.0},
+            "restitution": 0.93, "friction": 0.123
+        },
+        "axes": [
+            {"path": "/velocity/normal", "values": [-1.0, 0.0, 2.0]},
+            {"path": "/restitution", "values": [0.5, 1.5]}
+        ],
+        "outputs": ["/regime", "/impulse/normal"]
+    });
+    let table = json_table(&app, &body).await;
+    assert_eq!(table["points"], 6);
+    assert_eq!(table["errors"], 5);
+    let rows = table["rows"].as_array().unwrap();
+    assert_eq!(rows[0][2], "sliding");
+    assert!(rows[0][3].as_f64().unwrap() > 0.0);
+    assert_eq!(rows[0][4], Value::Null);
+    assert_eq!(rows[1][4], "Input out of range");
+    for row in &rows[2..] {
+        assert_eq!(row[2], Value::Null);
+        assert_eq!(row[3], Value::Null);
+        assert_eq!(row[4], "Contact is not approaching");
+    }
+    let (_, _, csv) = app.post_accept("/v1/sweeps", "text/csv", &body).await;
+    let text = String::from_utf8(csv).unwrap();
+    assert_eq!(
+        text.lines().nth(4).unwrap(),
+        "0.0,1.5,,,Contact is not approaching"
+    );
+}
+
+#[tokio::test]
+async fn structural_errors_are_422_problems_naming_the_member() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let cases = [
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/velocity/speed", "values": [1.0]}]}),
+            "/axes/0/path",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "values": [1.0]}], "outputs": ["/energy/nope"]}),
+            "/outputs/0",
+        ),
+        (
+            json!({"case": "tangential", "base": {"body": {"mass": 1.0}}, "axes": [{"path": "/friction", "values": [1.0]}]}),
+            "/base/body/inertia",
+        ),
+        (
+            json!({"case": "oblique", "base": {
+                "body": {"mass": 1.0, "inertia": 0.00125},
+                "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+                "velocity": {"normal": -1.0}, "restitution": 0.5, "impulse_ratio": 0.1},
+                "axes": [{"path": "/friction", "values": [1.0]}]}),
+            "/axes/0/path",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "values": [1.0], "linspace": {"start": 0, "stop": 1, "count": 2}}]}),
+            "/axes/0",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "logspace": {"start": 0.0, "stop": 1.0, "count": 3}}]}),
+            "/axes/0/logspace",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": []}),
+            "/axes",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "values": [1.0]}, {"path": "/friction", "values": [2.0]}]}),
+            "/axes/1/path",
+        ),
+        (
+            json!({"case": "normal", "base": {"body": {"mass": 1.0}, "velocity": {"normal": -1.0}, "restitution": 0.5},
+                   "axes": [{"path": "/body/inertia", "values": [1.0]}]}),
+            "/axes/0/path",
+        ),
+    ];
+    for (body, pointer) in cases {
+        let (status, headers, problem) = app.post("/v1/sweeps", &body).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}: {problem}");
+        assert_eq!(headers["content-type"], "application/problem+json");
+        assert_eq!(problem["pointer"], pointer, "{body}: {problem}");
+    }
+    let (status, headers, bytes) = app
+        .post_accept("/v1/sweeps", "text/html", &two_axis_sweep())
+        .await;
+    assert_eq!(status, StatusCode::NOT_ACCEPTABLE);
+    assert_eq!(headers["content-type"], "application/problem+json");
+    assert!(String::from_utf8_lossy(&bytes).contains("text/csv"));
+}
+
+#[tokio::test]
+async fn a_sweep_of_a_trillion_points_is_refused_at_once() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [
+            {"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 1_000_000}},
+            {"path": "/friction", "linspace": {"start": 0.0, "stop": 1.0, "count": 1_000_000}}
+        ]
+    });
+    for accept in ["text/csv", "application/json"] {
+        let start = Instant::now();
+        let (status, _, bytes) = app.post_accept("/v1/sweeps", accept, &body).await;
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "refused without computing"
+        );
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+        let problem: Value = serde_json::from_slice(&bytes).unwrap();
+        let detail = problem["detail"].as_str().unwrap();
+        assert!(detail.contains("1000000000000 points"), "{detail}");
+        let limit = if accept == "text/csv" {
+            "10000000"
+        } else {
+            "200000"
+        };
+        assert!(detail.contains(&format!("the limit is {limit}")), "{detail}");
+        assert_eq!(problem["pointer"], "/axes");
+    }
+    // Beyond 2^64: three axes of 2^63 values each.
+    let huge = json!({"start": 0.0, "stop": 1.0, "count": 9_223_372_036_854_775_807_u64});
+    let body = json!({"case": "tangential", "base": maw_base(), "axes": [
+        {"path": "/velocity/tangential", "linspace": huge},
+        {"path": "/friction", "linspace": huge},
+        {"path": "/restitution", "linspace": huge}
+    ]});
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &body).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let problem: Value = serde_json::from_slice(&bytes).unwrap();
+    assert!(problem["detail"].as_str().unwrap().contains("more than 2^128"));
+}
+
+#[tokio::test]
+async fn csv_streams_sweeps_larger_than_the_buffered_limit_in_order() {
+    let config = ServiceConfig {
+        max_buffered_sweep_points: 1_000,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 50_001}}],
+        "outputs": ["/contact_velocity/final/tangential"]
+    });
+    let (status, _, _) = app.post_accept("/v1/sweeps", "application/json", &body).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &body).await;
+    assert_eq!(status, StatusCode::OK);
+    let text = String::from_utf8(bytes).unwrap();
+    let mut previous = f64::NEG_INFINITY;
+    let mut count = 0;
+    for line in text.lines().skip(1) {
+        let vt: f64 = line.split(',').next().unwrap().parse().unwrap();
+        assert!(vt > previous, "rows in axis order");
+        previous = vt;
+        count += 1;
+    }
+    assert_eq!(count, 50_001);
+    assert_eq!(previous, 5.0);
+}
+
+#[tokio::test]
+async fn a_client_that_disconnects_stops_the_stream_and_the_server_keeps_serving() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 10_000_000}}]
+    });
+    let mut response = app
+        .client
+        .post(format!("{}/v1/sweeps", app.base))
+        .header("accept", "text/csv")
+        .json(&body)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::OK);
+    let first = response.chunk().await.unwrap().unwrap();
+    assert!(first.starts_with(b"/velocity/tangential,"));
+    drop(response);
+    let table = json_table(&app, &two_axis_sweep()).await;
+    assert_eq!(table["points"], 183);
+}
+
+#[tokio::test]
+async fn svg_plots_the_first_output_with_one_series_per_second_axis_value() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let (status, headers, bytes) = app
+        .post_accept("/v1/sweeps", "image/svg+xml", &two_axis_sweep())
+        .await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(headers["content-type"], "image/svg+xml");
+    let svg = String::from_utf8(bytes).unwrap();
+    assert!(svg.starts_with("<svg"));
+    assert!(svg.contains("/velocity/tangential"));
+    assert!(svg.contains("/contact_velocity/final/tangential"));
+    for label in ["/friction = 0.1", "/friction = 0.123", "/friction = 0.2"] {
+        assert!(svg.contains(label), "legend {label}");
+    }
+    // Three series and their three legend marks.
+    assert_eq!(svg.matches(r#"stroke-width="2""#).count(), 6);
+    // A regime cannot be plotted.
+    let mut body = two_axis_sweep();
+    body["outputs"] = json!(["/regime"]);
+    let (status, _, _) = app.post_accept("/v1/sweeps", "image/svg+xml", &body).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+}
+
+/// Rows of a one-axis sweep from an example file: (axis value, first output, regime).
+async fn example(app: &TestApp, file: &str) -> Vec<(f64, f64, String)> {
+    let path = format!("{}/examples/{file}", env!("CARGO_MANIFEST_DIR"));
+    let body: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let table = json_table(app, &body).await;
+    assert_eq!(table["errors"], 0);
+    table["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            (
+                r[0].as_f64().unwrap(),
+                r[1].as_f64().unwrap(),
+                r[2].as_str().unwrap().to_owned(),
+            )
+        })
+        .collect()
+}
+
+/// Least-squares line through points: (slope, intercept).
+fn line(points: &[(f64, f64)]) -> (f64, f64) {
+    let n = points.len() as f64;
+    let (sx, sy) = points.iter().fold((0.0, 0.0), |(a, b), p| (a + p.0, b + p.1));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), p| {
+        (a + (p.0 - mx) * (p.1 - my), b + (p.0 - mx) * (p.0 - mx))
+    });
+    let slope = sxy / sxx;
+    (slope, my - slope * mx)
+}
+
+fn branch(rows: &[(f64, f64, String)], regime: &str) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter(|r| r.2 == regime)
+        .map(|r| (r.0, r.1))
+        .collect()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * (1.0 + b.abs())
+}
+
+#[tokio::test]
+async fn figure_2_rolling_then_sliding_with_unit_slope() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let rows = example(&app, "figure2_coulomb_friction.json").await;
+    let b = 0.123 * 1.93 * 3.0;
+    let rolling = branch(&rows, "sticking");
+    let sliding = branch(&rows, "sliding");
+    assert!(rolling.iter().all(|&(x, y)| x <= b && y.abs() < 1e-15));
+    let (slope, intercept) = line(&sliding);
+    assert!(close(slope, 1.0) && close(intercept, -b), "{slope} {intercept}");
+    assert!(sliding.iter().all(|&(x, _)| x > b));
+}
+
+#[tokio::test]
+async fn figure_3_sliding_and_restitution_lines_meet_at_the_switch() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let rows = example(&app, "figure3_tangential_restitution_maw.json").await;
+    let (e, f, et, lambda) = (0.93, 0.123, 0.34, 2.0);
+    let (slope_s, intercept_s) = line(&branch(&rows, "sliding"));
+    let (slope_r, intercept_r) = line(&branch(&rows, "restitution"));
+    assert!(close(slope_s, 1.0), "sliding slope {slope_s}");
+    // −f (1 + e)(1 + λ) = −0.71217; the paper reads −0.72 off its plot.
+    assert!(close(intercept_s, -f * (1.0 + e) * (1.0 + lambda)));
+    assert!((intercept_s + 0.72).abs() < 0.01);
+    assert!(
+        close(slope_r, -et) && intercept_r.abs() < 1e-12,
+        "restitution {slope_r} {intercept_r}"
+    );
+    // The lines meet where the model switches: v_ct = f (1 + e)(1 + λ) / (1 + e_t).
+    let switch = f * (1.0 + e) * (1.0 + lambda) / (1.0 + et);
+    assert!(close(
+        slope_s * switch + intercept_s,
+        slope_r * switch + intercept_r
+    ));
+    let last_restitution = rows
+        .iter()
+        .filter(|r| r.2 == "restitution")
+        .map(|r| r.0)
+        .fold(0.0, f64::max);
+    let first_sliding = rows
+        .iter()
+        .filter(|r| r.2 == "sliding")
+        .map(|r| r.0)
+        .fold(f64::MAX, f64::min);
+    assert!(last_restitution <= switch && switch < first_sliding);
+}
+
+#[tokio::test]
+async fn figure_4_torsional_branches_have_slopes_minus_ez_and_one_minus_ez() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let rows = example(&app, "figure4_torsional_rubber_ball.json").await;
+    let ez = 0.2;
+    let switch = 0.3 * 0.005 * 0.1 * 1.8 * 3.0 / 0.000036;
+    let (slope_r, intercept_r) = line(&branch(&rows, "restitution"));
+    let (slope_s, intercept_s) = line(&branch(&rows, "sliding"));
+    assert!(close(slope_r, -ez) && intercept_r.abs() < 1e-12);
+    assert!(close(slope_s, 1.0 - ez));
+    assert!(close(
+        slope_s * switch + intercept_s,
+        slope_r * switch + intercept_r
+    ));
+    assert!((switch - 22.5).abs() < 1e-12);
+}
