@@ -1,0 +1,171 @@
+//! Sweep throughput in process: points per second on one core for the oblique
+//! (Coulomb friction) case with every output, with one output, with one output
+//! and the scene prepared once, beside a bare loop over the closed form with no
+//! validation (this machine's limit for the model); and on every core.
+//!
+//! `cargo bench --bench sweep` (figures in docs/performance.md).
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
+use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
+use restitution::{Contact, PlanarVelocity};
+
+const POINTS: u64 = 200_000;
+
+const ALL: [PlanarColumn; 19] = [
+    PlanarColumn::FinalNormalVelocity,
+    PlanarColumn::FinalTangentialVelocity,
+    PlanarColumn::FinalAngularVelocity,
+    PlanarColumn::InitialContactNormal,
+    PlanarColumn::InitialContactTangential,
+    PlanarColumn::FinalContactNormal,
+    PlanarColumn::FinalContactTangential,
+    PlanarColumn::NormalImpulse,
+    PlanarColumn::TangentialImpulse,
+    PlanarColumn::ImpulseRatio,
+    PlanarColumn::CriticalImpulseRatio,
+    PlanarColumn::Restitution,
+    PlanarColumn::KineticRestitution,
+    PlanarColumn::Regime,
+    PlanarColumn::InitialEnergy,
+    PlanarColumn::FinalEnergy,
+    PlanarColumn::EnergyLoss,
+    PlanarColumn::MaxEnergyLoss,
+    PlanarColumn::NormalizedEnergyLoss,
+];
+
+/// A non-central lamina (d_c ≠ 0) so that no special path applies.
+fn base() -> PlanarPoint {
+    PlanarPoint {
+        mass: 1.0,
+        inertia: 0.00125,
+        contact: Contact {
+            tangential_offset: 0.01,
+            normal_offset: 0.05,
+        },
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: 0.0,
+            angular: 2.0,
+        },
+        restitution: 0.93,
+        friction: 0.123,
+        ..PlanarPoint::default()
+    }
+}
+
+fn sweep(param: PlanarParam, columns: &[PlanarColumn], points: u64) -> Sweep<PlanarSweep> {
+    let (start, stop) = match param {
+        PlanarParam::Friction => (0.0, 1.0),
+        _ => (-5.0, 5.0),
+    };
+    let case = PlanarSweep::new(PlanarLaw::Friction, &base(), &[param], columns.to_vec());
+    let axes = vec![Axis {
+        param,
+        values: AxisValues::Linspace {
+            start,
+            stop,
+            count: points,
+        },
+    }];
+    Sweep::new(case, base(), axes, Combine::Product, u64::MAX).expect("a valid sweep")
+}
+
+/// Sums the first numeric cell of every row so nothing is optimised away.
+fn drive(s: &Sweep<PlanarSweep>, range: std::ops::Range<u64>) -> f64 {
+    let mut sum = 0.0;
+    s.for_each_in(range, |row| {
+        if let Ok([Cell::Number(x), ..]) = row.outcome {
+            sum += x;
+        }
+    });
+    sum
+}
+
+/// The Coulomb-friction closed form with no validation, no error paths and no
+/// special cases: the model's arithmetic alone.
+#[inline(never)]
+fn bare(p: &PlanarPoint) -> [f64; 9] {
+    let (m, k2) = (p.mass, p.inertia / p.mass);
+    let (dc, dd) = (p.contact.tangential_offset, p.contact.normal_offset);
+    let (vn, vt, w) = (p.velocity.normal, p.velocity.tangential, p.velocity.angular);
+    let (e, f) = (p.restitution, p.friction);
+    let vcn = dc.mul_add(w, vn);
+    let vct = (-dd).mul_add(w, vt);
+    let qn = -(1.0 + e) * vcn;
+    let (a, b, c) = (k2 + dc * dc, -dc * dd, k2 + dd * dd);
+    let det = a * c - b * b;
+    let dn_stick = k2 * (c * qn + b * vct) / det;
+    let dt_stick = -k2 * (a * vct + b * qn) / det;
+    let mu_c = dt_stick / dn_stick;
+    let (dn, dt, mu) = if mu_c.abs() <= f {
+        (dn_stick, dt_stick, mu_c)
+    } else {
+        let mu = -f.copysign(vct);
+        let dn = k2 * qn / (a + b * mu);
+        (dn, mu * dn, mu)
+    };
+    let vn1 = vn + dn;
+    let vt1 = vt + dt;
+    let w1 = w + (dc * dn - dd * dt) / k2;
+    let t0 = 0.5 * m * (vn * vn + vt * vt + k2 * w * w);
+    let t1 = 0.5 * m * (vn1 * vn1 + vt1 * vt1 + k2 * w1 * w1);
+    [vn1, vt1, w1, vn1 + dc * w1, vt1 - dd * w1, m * dn, m * dt, mu, t0 - t1]
+}
+
+fn single_core(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sweep_oblique_one_core");
+    group.throughput(Throughput::Elements(POINTS));
+    group.sample_size(20);
+    let all = sweep(PlanarParam::TangentialVelocity, &ALL, POINTS);
+    let one = sweep(
+        PlanarParam::TangentialVelocity,
+        &[PlanarColumn::FinalContactTangential],
+        POINTS,
+    );
+    let fixed = sweep(PlanarParam::Friction, &[PlanarColumn::FinalContactTangential], POINTS);
+    group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
+    group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
+    group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
+    group.bench_function("bare_closed_form", |b| {
+        b.iter(|| {
+            let mut p = base();
+            let mut sum = 0.0;
+            for i in 0..POINTS {
+                p.velocity.tangential = (i as f64).mul_add(10.0 / (POINTS - 1) as f64, -5.0);
+                sum += bare(black_box(&p))[4];
+            }
+            sum
+        })
+    });
+    group.finish();
+}
+
+fn all_cores(c: &mut Criterion) {
+    let points = 2_000_000;
+    let mut group = c.benchmark_group("sweep_oblique_all_cores");
+    group.throughput(Throughput::Elements(points));
+    group.sample_size(10);
+    for (name, columns) in [
+        ("all_outputs", &ALL[..]),
+        ("one_output", &[PlanarColumn::FinalContactTangential][..]),
+    ] {
+        let s = sweep(PlanarParam::TangentialVelocity, columns, points);
+        group.bench_with_input(BenchmarkId::new("run_parallel", name), &s, |b, s| {
+            b.iter(|| {
+                let mut total = 0.0;
+                s.run_parallel(4096, |r| drive(s, r), |x| {
+                    total += x;
+                    true
+                });
+                total
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, single_core, all_cores);
+criterion_main!(benches);

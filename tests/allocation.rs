@@ -1,0 +1,124 @@
+//! The sweep engine's hot path does not allocate per point: a counting global
+//! allocator sees the same few allocations (the range's buffers) for 1,000 and
+//! for 100,000 points, in every case.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
+use restitution::sweep::torsional::{TorsionalColumn, TorsionalParam, TorsionalSweep};
+use restitution::sweep::{Axis, AxisValues, Combine, Sweep, SweepCase};
+use restitution::torsional::TorsionalImpact;
+use restitution::{Contact, PlanarVelocity};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations_for<C: SweepCase>(sweep: &Sweep<C>, points: u64) -> u64 {
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let mut answered = 0u64;
+    sweep.for_each_in(0..points, |row| answered += u64::from(row.outcome.is_ok()));
+    assert!(answered > 0, "no point answered");
+    ALLOCATIONS.load(Ordering::Relaxed) - before
+}
+
+fn planar(law: PlanarLaw, param: PlanarParam, columns: Vec<PlanarColumn>) -> Sweep<PlanarSweep> {
+    let base = PlanarPoint {
+        mass: 1.0,
+        inertia: 0.00125,
+        contact: Contact {
+            tangential_offset: 0.01,
+            normal_offset: 0.05,
+        },
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: 0.3,
+            angular: 2.0,
+        },
+        restitution: 0.93,
+        friction: 0.123,
+        tangential_restitution: 0.34,
+        impulse_ratio: -0.05,
+        kinetic: restitution::oblique::KineticRestitution {
+            value: 0.9,
+            approach_impulse_ratio: -0.05,
+            rebound_impulse_ratio: -0.04,
+        },
+        ..PlanarPoint::default()
+    };
+    let case = PlanarSweep::new(law, &base, &[param], columns);
+    // Values crossing regimes and invalid points (v_n > 0, f < 0) alike.
+    let start = if param == PlanarParam::Friction { -0.001 } else { -5.0 };
+    let axes = vec![Axis {
+        param,
+        values: AxisValues::Linspace {
+            start,
+            stop: 5.0,
+            count: 100_000,
+        },
+    }];
+    Sweep::new(case, base, axes, Combine::Product, u64::MAX).unwrap()
+}
+
+#[test]
+fn no_allocation_per_point() {
+    let every = vec![
+        PlanarColumn::FinalContactTangential,
+        PlanarColumn::Regime,
+        PlanarColumn::CriticalImpulseRatio,
+        PlanarColumn::NormalizedEnergyLoss,
+    ];
+    let sweeps = [
+        planar(PlanarLaw::Friction, PlanarParam::TangentialVelocity, every.clone()),
+        planar(PlanarLaw::TangentialRestitution, PlanarParam::TangentialVelocity, every.clone()),
+        planar(PlanarLaw::KineticRestitution, PlanarParam::NormalVelocity, every.clone()),
+        planar(PlanarLaw::ImpulseRatio, PlanarParam::AngularVelocity, every.clone()),
+        planar(PlanarLaw::Friction, PlanarParam::Friction, vec![PlanarColumn::Regime]),
+    ];
+    for sweep in &sweeps {
+        let small = allocations_for(sweep, 1_000);
+        let large = allocations_for(sweep, 100_000);
+        assert_eq!(small, large, "allocations grow with the number of points");
+        assert!(large <= 4, "{large} allocations per range");
+    }
+    let torsional = Sweep::new(
+        TorsionalSweep::new(vec![TorsionalColumn::FinalSpin, TorsionalColumn::EnergyLoss]),
+        TorsionalImpact {
+            mass: 0.1,
+            normal_inertia: 3.6e-5,
+            normal_velocity: -3.0,
+            spin: 0.0,
+            restitution: 0.8,
+            torsional_restitution: 0.2,
+            torsional_friction: 0.3,
+            pitch_radius: 0.005,
+        },
+        vec![Axis {
+            param: TorsionalParam::Spin,
+            values: AxisValues::Linspace {
+                start: -100.0,
+                stop: 100.0,
+                count: 100_000,
+            },
+        }],
+        Combine::Product,
+        u64::MAX,
+    )
+    .unwrap();
+    assert_eq!(allocations_for(&torsional, 1_000), allocations_for(&torsional, 100_000));
+}
+
