@@ -112,7 +112,17 @@ fn bare(p: &PlanarPoint) -> [f64; 9] {
     let w1 = w + (dc * dn - dd * dt) / k2;
     let t0 = 0.5 * m * (vn * vn + vt * vt + k2 * w * w);
     let t1 = 0.5 * m * (vn1 * vn1 + vt1 * vt1 + k2 * w1 * w1);
-    [vn1, vt1, w1, vn1 + dc * w1, vt1 - dd * w1, m * dn, m * dt, mu, t0 - t1]
+    [
+        vn1,
+        vt1,
+        w1,
+        vn1 + dc * w1,
+        vt1 - dd * w1,
+        m * dn,
+        m * dt,
+        mu,
+        t0 - t1,
+    ]
 }
 
 fn single_core(c: &mut Criterion) {
@@ -125,7 +135,11 @@ fn single_core(c: &mut Criterion) {
         &[PlanarColumn::FinalContactTangential],
         POINTS,
     );
-    let fixed = sweep(PlanarParam::Friction, &[PlanarColumn::FinalContactTangential], POINTS);
+    let fixed = sweep(
+        PlanarParam::Friction,
+        &[PlanarColumn::FinalContactTangential],
+        POINTS,
+    );
     group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
     group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
     group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
@@ -156,10 +170,14 @@ fn all_cores(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("run_parallel", name), &s, |b, s| {
             b.iter(|| {
                 let mut total = 0.0;
-                s.run_parallel(4096, |r| drive(s, r), |x| {
-                    total += x;
-                    true
-                });
+                s.run_parallel(
+                    4096,
+                    |r| drive(s, r),
+                    |x| {
+                        total += x;
+                        true
+                    },
+                );
                 total
             })
         });

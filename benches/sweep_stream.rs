@@ -152,7 +152,10 @@ fn main() {
     let (server, startup) = start();
     std::thread::sleep(Duration::from_millis(200));
     let idle = rss_kib(server.child.id());
-    println!("start-up to first answered request: {:.1} ms", startup.as_secs_f64() * 1e3);
+    println!(
+        "start-up to first answered request: {:.1} ms",
+        startup.as_secs_f64() * 1e3
+    );
     println!("idle resident memory: {:.1} MiB", idle as f64 / 1024.0);
     println!();
     println!("| format | outputs | points | seconds | rows/s | MB/s | server peak RSS (MiB) |");

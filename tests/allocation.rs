@@ -58,11 +58,14 @@ fn planar(law: PlanarLaw, param: PlanarParam, columns: Vec<PlanarColumn>) -> Swe
             approach_impulse_ratio: -0.05,
             rebound_impulse_ratio: -0.04,
         },
-        ..PlanarPoint::default()
     };
     let case = PlanarSweep::new(law, &base, &[param], columns);
     // Values crossing regimes and invalid points (v_n > 0, f < 0) alike.
-    let start = if param == PlanarParam::Friction { -0.001 } else { -5.0 };
+    let start = if param == PlanarParam::Friction {
+        -0.001
+    } else {
+        -5.0
+    };
     let axes = vec![Axis {
         param,
         values: AxisValues::Linspace {
@@ -83,11 +86,31 @@ fn no_allocation_per_point() {
         PlanarColumn::NormalizedEnergyLoss,
     ];
     let sweeps = [
-        planar(PlanarLaw::Friction, PlanarParam::TangentialVelocity, every.clone()),
-        planar(PlanarLaw::TangentialRestitution, PlanarParam::TangentialVelocity, every.clone()),
-        planar(PlanarLaw::KineticRestitution, PlanarParam::NormalVelocity, every.clone()),
-        planar(PlanarLaw::ImpulseRatio, PlanarParam::AngularVelocity, every.clone()),
-        planar(PlanarLaw::Friction, PlanarParam::Friction, vec![PlanarColumn::Regime]),
+        planar(
+            PlanarLaw::Friction,
+            PlanarParam::TangentialVelocity,
+            every.clone(),
+        ),
+        planar(
+            PlanarLaw::TangentialRestitution,
+            PlanarParam::TangentialVelocity,
+            every.clone(),
+        ),
+        planar(
+            PlanarLaw::KineticRestitution,
+            PlanarParam::NormalVelocity,
+            every.clone(),
+        ),
+        planar(
+            PlanarLaw::ImpulseRatio,
+            PlanarParam::AngularVelocity,
+            every.clone(),
+        ),
+        planar(
+            PlanarLaw::Friction,
+            PlanarParam::Friction,
+            vec![PlanarColumn::Regime],
+        ),
     ];
     for sweep in &sweeps {
         let small = allocations_for(sweep, 1_000);
@@ -119,6 +142,8 @@ fn no_allocation_per_point() {
         u64::MAX,
     )
     .unwrap();
-    assert_eq!(allocations_for(&torsional, 1_000), allocations_for(&torsional, 100_000));
+    assert_eq!(
+        allocations_for(&torsional, 1_000),
+        allocations_for(&torsional, 100_000)
+    );
 }
-
