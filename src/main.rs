@@ -13,10 +13,18 @@ fn main() -> ExitCode {
             print!("{}", restitution::http::openapi_json());
             ExitCode::SUCCESS
         }
-        Some(Command::Healthcheck { addr }) => runtime().block_on(healthcheck(addr)),
-        Some(Command::Serve(config)) => runtime().block_on(serve(config)),
-        None => runtime().block_on(serve(cli.serve)),
+        Some(Command::Healthcheck { addr }) => run(healthcheck(addr)),
+        Some(Command::Serve(config)) => run(serve(config)),
+        None => run(serve(cli.serve)),
     }
+}
+
+/// Runs `task`, then gives blocking work (a sweep whose client is gone) a moment to stop.
+fn run(task: impl std::future::Future<Output = ExitCode>) -> ExitCode {
+    let runtime = runtime();
+    let code = runtime.block_on(task);
+    runtime.shutdown_timeout(std::time::Duration::from_secs(1));
+    code
 }
 
 fn runtime() -> tokio::runtime::Runtime {
@@ -26,7 +34,7 @@ fn runtime() -> tokio::runtime::Runtime {
         .expect("the tokio runtime starts")
 }
 
-async fn serve(config: restitution::http::ServiceConfig) -> ExitCode {
+async fn serve(mut config: restitution::http::ServiceConfig) -> ExitCode {
     tracing_subscriber::fmt()
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stdout()))
         .with_env_filter(
@@ -34,6 +42,10 @@ async fn serve(config: restitution::http::ServiceConfig) -> ExitCode {
                 .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
         )
         .init();
+    if let Err(error) = config.load_api_key() {
+        tracing::error!(%error, "cannot read the API key");
+        return ExitCode::FAILURE;
+    }
     let listener = match tokio::net::TcpListener::bind(config.bind).await {
         Ok(listener) => listener,
         Err(error) => {

@@ -1,6 +1,8 @@
 //! Command line and environment configuration (clap).
 
 use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand};
 
@@ -59,6 +61,44 @@ pub struct ServiceConfig {
     /// A streamed sweep whose client reads nothing for this long is dropped, in milliseconds.
     #[arg(long, env = "RESTITUTION_SWEEP_STALL_TIMEOUT_MS", default_value_t = 30_000)]
     pub sweep_stall_timeout_ms: u64,
+    /// A connection must send a request's complete headers within this many milliseconds.
+    #[arg(long, env = "RESTITUTION_HEADER_READ_TIMEOUT_MS", default_value_t = 5_000)]
+    pub header_read_timeout_ms: u64,
+    /// After SIGTERM or SIGINT, in-flight requests may finish for this many milliseconds.
+    #[arg(long, env = "RESTITUTION_SHUTDOWN_GRACE_MS", default_value_t = 10_000)]
+    pub shutdown_grace_ms: u64,
+    /// A file holding a bearer token; when given, every route but /healthz needs
+    /// `Authorization: Bearer <token>`.
+    #[arg(long, env = "RESTITUTION_API_KEY_FILE")]
+    pub api_key_file: Option<PathBuf>,
+    /// Origins allowed by CORS (repeat the flag or separate by commas); CORS is off when none.
+    #[arg(
+        long = "cors-allow-origin",
+        env = "RESTITUTION_CORS_ALLOW_ORIGINS",
+        value_delimiter = ','
+    )]
+    pub cors_allow_origins: Vec<String>,
+    /// The bearer token itself, read from `api_key_file` by [`ServiceConfig::load_api_key`].
+    #[arg(skip)]
+    pub api_key: Option<Arc<str>>,
+}
+
+impl ServiceConfig {
+    /// Reads the bearer token from `api_key_file`, refusing an empty one.
+    pub fn load_api_key(&mut self) -> std::io::Result<()> {
+        if let Some(path) = &self.api_key_file {
+            let text = std::fs::read_to_string(path)?;
+            let token = text.trim();
+            if token.is_empty() {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!("the API key file {} is empty", path.display()),
+                ));
+            }
+            self.api_key = Some(Arc::from(token));
+        }
+        Ok(())
+    }
 }
 
 impl Default for ServiceConfig {
@@ -71,6 +111,11 @@ impl Default for ServiceConfig {
             max_sweep_points: 10_000_000,
             max_buffered_sweep_points: 200_000,
             sweep_stall_timeout_ms: 30_000,
+            header_read_timeout_ms: 5_000,
+            shutdown_grace_ms: 10_000,
+            api_key_file: None,
+            cors_allow_origins: Vec::new(),
+            api_key: None,
         }
     }
 }

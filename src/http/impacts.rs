@@ -26,6 +26,13 @@ pub enum ImpactProblems {
         content_type = "application/problem+json"
     )]
     Malformed(Problem),
+    /// The service has an API key and the request lacks it or has another.
+    #[response(
+        status = 401,
+        description = "Missing or wrong bearer token (only when the service runs with an API key)",
+        content_type = "application/problem+json"
+    )]
+    Unauthorized(Problem),
     /// The body is larger than the configured limit.
     #[response(
         status = 413,

@@ -50,9 +50,37 @@ pub const REQUEST_ID: &str = "x-request-id";
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
+    modifiers(&OptionalBearer),
     tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
+
+/// Declares the optional bearer token: required only when the service runs
+/// with `--api-key-file` (every route but /healthz).
+struct OptionalBearer;
+
+impl utoipa::Modify for OptionalBearer {
+    fn modify(&self, doc: &mut OpenApiDocument) {
+        use utoipa::openapi::security::{HttpAuthScheme, HttpBuilder, SecurityRequirement, SecurityScheme};
+        if let Some(components) = doc.components.as_mut() {
+            components.add_security_scheme(
+                "bearer",
+                SecurityScheme::Http(
+                    HttpBuilder::new()
+                        .scheme(HttpAuthScheme::Bearer)
+                        .description(Some(
+                            "Only when the service runs with --api-key-file: `Authorization: Bearer <key>`",
+                        ))
+                        .build(),
+                ),
+            );
+        }
+        doc.security = Some(vec![
+            SecurityRequirement::default(),
+            SecurityRequirement::new("bearer", Vec::<String>::new()),
+        ]);
+    }
+}
 
 /// Liveness answer.
 #[derive(Serialize, ToSchema)]
@@ -96,7 +124,7 @@ pub fn openapi_json() -> String {
 pub fn app(config: &ServiceConfig) -> Router {
     let (router, _) = routes().split_for_parts();
     let limits = Arc::new(config.clone());
-    router
+    let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi()))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
@@ -129,7 +157,78 @@ pub fn app(config: &ServiceConfig) -> Router {
                 .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
                 .load_shed()
                 .concurrency_limit(config.concurrency_limit),
-        )
+        );
+    let router = match &config.api_key {
+        Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
+        None => router,
+    };
+    match cors(&config.cors_allow_origins) {
+        Some(layer) => router.layer(layer),
+        None => router,
+    }
+}
+
+/// CORS for the allowed origins; `None` (CORS off) when there are none.
+fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
+    use axum::http::{Method, header};
+    use tower_http::cors::{AllowOrigin, CorsLayer};
+    let origins: Vec<HeaderValue> = origins
+        .iter()
+        .filter_map(|o| HeaderValue::from_str(o.trim()).ok())
+        .collect();
+    if origins.is_empty() {
+        return None;
+    }
+    Some(
+        CorsLayer::new()
+            .allow_origin(AllowOrigin::list(origins))
+            .allow_methods([Method::GET, Method::POST])
+            .allow_headers([header::CONTENT_TYPE, header::ACCEPT, header::AUTHORIZATION])
+            .expose_headers([
+                axum::http::HeaderName::from_static(REQUEST_ID),
+                axum::http::HeaderName::from_static("x-sweep-points"),
+            ]),
+    )
+}
+
+/// Refuses every request but `GET /healthz` without `Authorization: Bearer <key>` (401).
+async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
+    if request.uri().path() == "/healthz" {
+        return next.run(request).await;
+    }
+    let token = request
+        .headers()
+        .get(axum::http::header::AUTHORIZATION)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.split_once(' '))
+        .filter(|(scheme, _)| scheme.eq_ignore_ascii_case("bearer"))
+        .map(|(_, token)| token.trim());
+    let refusal = match token {
+        Some(token) if same_secret(token.as_bytes(), key.as_bytes()) => return next.run(request).await,
+        Some(_) => ApiError::new(
+            StatusCode::UNAUTHORIZED,
+            "invalid-api-key",
+            "Invalid API key",
+            "the bearer token is not the service's API key",
+        ),
+        None => ApiError::new(
+            StatusCode::UNAUTHORIZED,
+            "missing-api-key",
+            "API key required",
+            "send the service's API key as `Authorization: Bearer <key>`",
+        ),
+    };
+    let mut response = refusal.into_response();
+    response.headers_mut().insert(
+        axum::http::header::WWW_AUTHENTICATE,
+        HeaderValue::from_static("Bearer realm=\"restitution\""),
+    );
+    response
+}
+
+/// Compares secrets in time independent of where they differ.
+fn same_secret(given: &[u8], key: &[u8]) -> bool {
+    given.len() == key.len() && given.iter().zip(key).fold(0u8, |acc, (a, b)| acc | (a ^ b)) == 0
 }
 
 async fn overloaded(_: BoxError) -> ApiError {
@@ -223,12 +322,74 @@ static PROCESS_TAG: std::sync::LazyLock<u64> = std::sync::LazyLock::new(|| {
 
 /// Serves `app` on `listener` until SIGINT or SIGTERM, letting in-flight requests finish.
 pub async fn serve(listener: tokio::net::TcpListener, config: &ServiceConfig) -> std::io::Result<()> {
-    axum::serve(listener, app(config))
-        .with_graceful_shutdown(shutdown_signal())
-        .await
+    serve_until(listener, config, shutdown_signal()).await
 }
 
-async fn shutdown_signal() {
+/// Serves until `signal` completes. Connections must send complete request
+/// headers within `header_read_timeout_ms`. On the signal the listener closes
+/// (new connections are refused), idle keep-alive connections close, and
+/// in-flight requests (streamed sweeps included) have `shutdown_grace_ms` to
+/// finish before the remaining connections are dropped.
+pub async fn serve_until(
+    listener: tokio::net::TcpListener,
+    config: &ServiceConfig,
+    signal: impl std::future::Future<Output = ()>,
+) -> std::io::Result<()> {
+    use hyper_util::rt::{TokioExecutor, TokioIo, TokioTimer};
+    use hyper_util::server::conn::auto;
+    use hyper_util::server::graceful::GracefulShutdown;
+    use hyper_util::service::TowerToHyperService;
+
+    // `with_state` turns the handlers into routes once, so that each route's
+    // middleware (the concurrency limit's semaphore above all) is built once
+    // and shared, not rebuilt per request.
+    let router: Router = app(config).with_state(());
+    let mut builder = auto::Builder::new(TokioExecutor::new());
+    builder
+        .http1()
+        .timer(TokioTimer::new())
+        .header_read_timeout(Duration::from_millis(config.header_read_timeout_ms));
+    let graceful = GracefulShutdown::new();
+    tokio::pin!(signal);
+    loop {
+        tokio::select! {
+            accepted = listener.accept() => {
+                let stream = match accepted {
+                    Ok((stream, _)) => stream,
+                    Err(error) => {
+                        // Out of file descriptors and the like: wait, do not die.
+                        tracing::warn!(%error, "accept failed");
+                        tokio::time::sleep(Duration::from_millis(20)).await;
+                        continue;
+                    }
+                };
+                let _ = stream.set_nodelay(true);
+                let service = TowerToHyperService::new(router.clone());
+                let connection = builder.serve_connection_with_upgrades(TokioIo::new(stream), service);
+                let connection = graceful.watch(connection.into_owned());
+                tokio::spawn(async move {
+                    if let Err(error) = connection.await {
+                        tracing::debug!(%error, "connection ended with an error");
+                    }
+                });
+            }
+            () = &mut signal => break,
+        }
+    }
+    drop(listener);
+    let grace = Duration::from_millis(config.shutdown_grace_ms);
+    match tokio::time::timeout(grace, graceful.shutdown()).await {
+        Ok(()) => tracing::info!("every connection closed; exiting"),
+        Err(_) => tracing::warn!(
+            grace_ms = config.shutdown_grace_ms,
+            "grace period over; dropping the remaining connections"
+        ),
+    }
+    Ok(())
+}
+
+/// Resolves on SIGINT or SIGTERM.
+pub async fn shutdown_signal() {
     let ctrl_c = async {
         let _ = tokio::signal::ctrl_c().await;
     };

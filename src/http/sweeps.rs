@@ -10,7 +10,7 @@
 //! reading.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 use axum::Extension;
@@ -32,6 +32,30 @@ use super::svg;
 use crate::sweep::planar::{PlanarColumn, PlanarParam, PlanarSweep};
 use crate::sweep::torsional::{TorsionalColumn, TorsionalParam, TorsionalSweep};
 use crate::sweep::{Axis, AxisValues, Cell, Combine, GridError, Row, Sweep, SweepCase};
+
+/// Streamed sweeps whose producer is still working.
+static ACTIVE_STREAMS: AtomicUsize = AtomicUsize::new(0);
+
+/// The number of streamed sweeps still computing (for tests and diagnostics).
+pub fn active_streams() -> usize {
+    ACTIVE_STREAMS.load(Ordering::Acquire)
+}
+
+/// Counts a producer as active while it lives.
+struct ActiveStream;
+
+impl ActiveStream {
+    fn start() -> Self {
+        ACTIVE_STREAMS.fetch_add(1, Ordering::AcqRel);
+        ActiveStream
+    }
+}
+
+impl Drop for ActiveStream {
+    fn drop(&mut self) {
+        ACTIVE_STREAMS.fetch_sub(1, Ordering::AcqRel);
+    }
+}
 
 /// Points per chunk: the unit of parallel work and of streaming.
 const CHUNK_POINTS: u64 = 4096;
@@ -164,6 +188,13 @@ pub enum SweepProblems {
         content_type = "application/problem+json"
     )]
     Malformed(Problem),
+    /// The service has an API key and the request lacks it or has another.
+    #[response(
+        status = 401,
+        description = "Missing or wrong bearer token (only when the service runs with an API key)",
+        content_type = "application/problem+json"
+    )]
+    Unauthorized(Problem),
     /// No supported media type is acceptable.
     #[response(
         status = 406,
@@ -836,7 +867,9 @@ where
     let complete = Arc::new(AtomicBool::new(false));
     let done = complete.clone();
     let runtime = tokio::runtime::Handle::current();
+    let active = ActiveStream::start();
     tokio::task::spawn_blocking(move || {
+        let _active = active;
         let send = |bytes: Vec<u8>| {
             runtime
                 .block_on(tx.send_timeout(Bytes::from(bytes), stall))

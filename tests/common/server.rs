@@ -1,7 +1,7 @@
 //! The real server on an ephemeral loopback port, called over HTTP with reqwest.
 
 use reqwest::StatusCode;
-use restitution::http::{ServiceConfig, app};
+use restitution::http::{ServiceConfig, serve_until};
 use serde_json::Value;
 
 pub struct TestApp {
@@ -16,8 +16,7 @@ pub async fn spawn_app(config: ServiceConfig) -> TestApp {
         .await
         .expect("bind loopback");
     let addr = listener.local_addr().expect("local addr");
-    let router = app(&config);
-    tokio::spawn(async move { axum::serve(listener, router).await });
+    tokio::spawn(async move { serve_until(listener, &config, std::future::pending()).await });
     TestApp {
         addr,
         base: format!("http://{addr}"),
