@@ -11,7 +11,7 @@ use super::extract::ApiJson;
 use super::problem::{ApiError, Problem};
 use crate::error::{ImpactError, Input};
 use crate::oblique::KineticRestitution;
-use crate::planar::{Outputs, PlanarOutcome};
+use crate::planar::Outputs;
 use crate::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
 use crate::torsional::{self, TorsionalImpact};
 
@@ -336,9 +336,36 @@ pub fn torsional_input(req: &TorsionalRequest) -> TorsionalImpact {
     }
 }
 
-fn solve_planar(input: Result<(PlanarLaw, PlanarPoint), ApiError>) -> Result<PlanarOutcome, ApiError> {
+fn solve_planar(input: Result<(PlanarLaw, PlanarPoint), ApiError>) -> Result<PlanarResponse, ApiError> {
     let (law, point) = input?;
-    Ok(solve_point(law, &point, Outputs::ALL)?)
+    Ok(PlanarResponse::from_outcome(&solve_point(
+        law,
+        &point,
+        Outputs::ALL,
+    )?))
+}
+
+/// The response to a normal request.
+pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
+    solve_planar(normal_input(&req))
+}
+
+/// The response to an oblique request.
+pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> {
+    solve_planar(oblique_input(&req))
+}
+
+/// The response to a tangential-restitution request.
+pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
+    solve_planar(Ok(tangential_input(&req)))
+}
+
+/// The response to a torsional request.
+pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, ApiError> {
+    Ok(TorsionalResponse::from_outcome(&torsional::solve(
+        &torsional_input(&req),
+        true,
+    )?))
 }
 
 /// Normal impact of a point mass or a frictionless rigid body (section 2.1).
@@ -350,9 +377,7 @@ fn solve_planar(input: Result<(PlanarLaw, PlanarPoint), ApiError>) -> Result<Pla
     responses((status = 200, description = "The impact's outcome", body = PlanarResponse), ImpactProblems)
 )]
 pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_planar(normal_input(
-        &req,
-    ))?)))
+    Ok(Json(respond_normal(req)?))
 }
 
 /// Oblique impact with a prescribed impulse ratio, Coulomb friction, or two-phase kinetic restitution (Eqs 1–19, Appendix).
@@ -366,9 +391,7 @@ pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json
 pub async fn impacts_oblique(
     ApiJson(req): ApiJson<ObliqueRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_planar(oblique_input(
-        &req,
-    ))?)))
+    Ok(Json(respond_oblique(req)?))
 }
 
 /// Impact with tangential restitution: the bilinear model of Eqs 20–27.
@@ -382,9 +405,7 @@ pub async fn impacts_oblique(
 pub async fn impacts_tangential(
     ApiJson(req): ApiJson<TangentialRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(PlanarResponse::from_outcome(&solve_planar(Ok(
-        tangential_input(&req),
-    ))?)))
+    Ok(Json(respond_tangential(req)?))
 }
 
 /// Impact with torsional restitution: the bilinear model of Eqs 28–31.
@@ -398,8 +419,5 @@ pub async fn impacts_tangential(
 pub async fn impacts_torsional(
     ApiJson(req): ApiJson<TorsionalRequest>,
 ) -> Result<Json<TorsionalResponse>, ApiError> {
-    Ok(Json(TorsionalResponse::from_outcome(&torsional::solve(
-        &torsional_input(&req),
-        true,
-    )?)))
+    Ok(Json(respond_torsional(req)?))
 }

@@ -123,9 +123,18 @@ pub fn openapi_json() -> String {
 /// The application: routes, documentation and middleware, ready to serve.
 pub fn app(config: &ServiceConfig) -> Router {
     let (router, _) = routes().split_for_parts();
+    with_middleware(
+        router.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi())),
+        config,
+    )
+}
+
+/// Wraps `router` in the service's middleware and fallbacks (request ids,
+/// access log, panic guard, load shedding, timeout, body limit, API key,
+/// CORS). The load-test harness serves its baseline handler through this too.
+pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
     let limits = Arc::new(config.clone());
     let router = router
-        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi()))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(config.body_limit))
@@ -335,6 +344,17 @@ pub async fn serve_until(
     config: &ServiceConfig,
     signal: impl std::future::Future<Output = ()>,
 ) -> std::io::Result<()> {
+    serve_router_until(listener, app(config), config, signal).await
+}
+
+/// Serves any router (already wrapped by [`with_middleware`]) the way the
+/// service serves its own: see [`serve_until`].
+pub async fn serve_router_until(
+    listener: tokio::net::TcpListener,
+    router: Router,
+    config: &ServiceConfig,
+    signal: impl std::future::Future<Output = ()>,
+) -> std::io::Result<()> {
     use hyper_util::rt::{TokioExecutor, TokioIo, TokioTimer};
     use hyper_util::server::conn::auto;
     use hyper_util::server::graceful::GracefulShutdown;
@@ -343,7 +363,7 @@ pub async fn serve_until(
     // `with_state` turns the handlers into routes once, so that each route's
     // middleware (the concurrency limit's semaphore above all) is built once
     // and shared, not rebuilt per request.
-    let router: Router = app(config).with_state(());
+    let router: Router = router.with_state(());
     let mut builder = auto::Builder::new(TokioExecutor::new());
     builder
         .http1()

@@ -167,7 +167,7 @@ pub struct SweepTable {
     /// Column names.
     pub columns: Vec<String>,
     /// One row per point, in axis order.
-    #[schema(value_type = Vec<Vec<Object>>)]
+    #[schema(schema_with = rows_schema)]
     pub rows: Vec<Vec<serde_json::Value>>,
     /// Number of points.
     pub points: u64,
@@ -175,6 +175,15 @@ pub struct SweepTable {
     pub errors: u64,
     /// The precision that produced the answers.
     pub precision: PrecisionDto,
+}
+
+/// Rows: arrays of cells, each a number, a name (regime, error title) or null.
+fn rows_schema() -> utoipa::openapi::schema::Array {
+    use utoipa::openapi::schema::{ArrayBuilder, ObjectBuilder, SchemaType, Type};
+    let cell = ObjectBuilder::new()
+        .schema_type(SchemaType::from_iter([Type::Number, Type::String, Type::Null]))
+        .description(Some("A number, a name (regime or error title), or null"));
+    ArrayBuilder::new().items(ArrayBuilder::new().items(cell)).build()
 }
 
 /// The error responses of the sweep endpoint (all problem+json).
