@@ -1,0 +1,53 @@
+//! A fixed workload for profilers: 1,000,000 points of the oblique sweep with
+//! every output on one thread (the case of `benches/sweep.rs`).
+//!
+//! ```text
+//! CARGO_PROFILE_RELEASE_DEBUG=true cargo build --release --example sweep_profile
+//! valgrind --tool=callgrind --callgrind-out-file=callgrind.out target/release/examples/sweep_profile
+//! callgrind_annotate --inclusive=yes callgrind.out | head -40
+//! ```
+
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
+use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
+use restitution::{Contact, PlanarVelocity};
+
+fn main() {
+    let base = PlanarPoint {
+        mass: 1.0,
+        inertia: 0.00125,
+        contact: Contact {
+            tangential_offset: 0.01,
+            normal_offset: 0.05,
+        },
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: 0.0,
+            angular: 2.0,
+        },
+        restitution: 0.93,
+        friction: 0.123,
+        ..PlanarPoint::default()
+    };
+    let columns = vec![
+        PlanarColumn::FinalContactTangential,
+        PlanarColumn::CriticalImpulseRatio,
+        PlanarColumn::NormalizedEnergyLoss,
+    ];
+    let case = PlanarSweep::new(PlanarLaw::Friction, &base, &[PlanarParam::TangentialVelocity], columns);
+    let axes = vec![Axis {
+        param: PlanarParam::TangentialVelocity,
+        values: AxisValues::Linspace {
+            start: -5.0,
+            stop: 5.0,
+            count: 1_000_000,
+        },
+    }];
+    let sweep = Sweep::new(case, base, axes, Combine::Product, u64::MAX).expect("a valid sweep");
+    let mut sum = 0.0;
+    sweep.for_each_in(0..sweep.points(), |row| {
+        if let Ok([Cell::Number(x), ..]) = row.outcome {
+            sum += x;
+        }
+    });
+    println!("{sum}");
+}
