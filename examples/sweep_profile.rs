@@ -33,7 +33,12 @@ fn main() {
         PlanarColumn::CriticalImpulseRatio,
         PlanarColumn::NormalizedEnergyLoss,
     ];
-    let case = PlanarSweep::new(PlanarLaw::Friction, &base, &[PlanarParam::TangentialVelocity], columns);
+    let case = PlanarSweep::new(
+        PlanarLaw::Friction,
+        &base,
+        &[PlanarParam::TangentialVelocity],
+        columns,
+    );
     let axes = vec![Axis {
         param: PlanarParam::TangentialVelocity,
         values: AxisValues::Linspace {

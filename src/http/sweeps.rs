@@ -60,7 +60,7 @@ impl Drop for ActiveStream {
 /// Points per chunk: the unit of parallel work and of streaming.
 const CHUNK_POINTS: u64 = 4096;
 /// Chunks queued between the workers and the socket.
-const QUEUED_CHUNKS: usize = 8;
+const QUEUED_CHUNKS: usize = 4;
 
 /// The physical case a sweep evaluates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
