@@ -148,7 +148,10 @@ fn kharaz_spheres_on_glass() {
     let et_above_5 = fit_et(&points, 5.0);
     println!("\nfitted e_t = {et:.4} (all incidences), {et_above_5:.4} (incidence ≥ 5°)");
     let above = deviations(&points, et_above_5);
-    report(&format!("(c) bilinear model, e_t = {et_above_5:.3} (fitted at incidence ≥ 5°)"), &above);
+    report(
+        &format!("(c) bilinear model, e_t = {et_above_5:.3} (fitted at incidence ≥ 5°)"),
+        &above,
+    );
     let bilinear = deviations(&points, et);
     report(&format!("(b) bilinear model, e_t = {et:.3}"), &bilinear);
 
@@ -180,7 +183,10 @@ fn kharaz_spheres_on_glass() {
         .find(|((q, r), _)| q == "tangential_cor_centroid" && *r == "restitution")
         .map(|(_, v)| v.0);
     if let (Some(stick), Some(restitution)) = (stick, restitution) {
-        assert!(restitution < stick, "e_t does not improve V_t/v_t: {restitution} vs {stick}");
+        assert!(
+            restitution < stick,
+            "e_t does not improve V_t/v_t: {restitution} vs {stick}"
+        );
     }
     assert!((0.0..=1.0).contains(&et));
     assert!(et_above_5 > et, "near-normal points pull e_t down");
