@@ -27,6 +27,7 @@
 
 pub mod energy;
 pub mod error;
+pub mod fit;
 pub mod linear;
 pub mod normal;
 pub mod oblique;

@@ -8,6 +8,7 @@
 pub mod config;
 pub mod dto;
 pub mod extract;
+pub mod fits;
 pub mod impacts;
 pub mod problem;
 mod svg;
@@ -51,7 +52,7 @@ pub const REQUEST_ID: &str = "x-request-id";
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
     modifiers(&OptionalBearer),
-    tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "service", description = "Liveness"))
+    tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "fits", description = "Coefficients identified from measured impacts"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
 
@@ -102,6 +103,7 @@ fn routes() -> OpenApiRouter {
         .routes(routes!(impacts::impacts_tangential))
         .routes(routes!(impacts::impacts_torsional))
         .routes(routes!(sweeps::sweeps))
+        .routes(routes!(fits::fits_tangential))
         .routes(routes!(healthz))
 }
 

@@ -1,0 +1,102 @@
+//! `POST /v1/fits/tangential` over loopback: coefficients recovered from
+//! observations the solver generates, in any order; refusals name the member.
+
+mod common;
+
+use common::server::spawn_app;
+use reqwest::StatusCode;
+use restitution::http::ServiceConfig;
+use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
+use serde_json::{Value, json};
+
+/// Maw's disc over a range of v_t, with a small deterministic perturbation.
+fn observations() -> Vec<Value> {
+    let (e, f, et) = (0.93, 0.123, 0.34);
+    (0..30)
+        .map(|i| {
+            let vt = 0.05 + 0.1 * f64::from(i);
+            let scene = PlanarScene::new(
+                Body::new(1.0, 0.00125).unwrap(),
+                Contact::central(0.05),
+                PlanarVelocity {
+                    normal: -1.0,
+                    tangential: vt,
+                    angular: 0.0,
+                },
+            )
+            .unwrap();
+            let o = tangential::solve(&scene, e, f, et, Outputs::MINIMAL).unwrap();
+            let wiggle = 1e-3 * ((f64::from(i) * 2.399).sin());
+            json!({
+                "body": {"mass": 1.0, "inertia": 0.00125},
+                "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+                "initial": {"normal": -1.0, "tangential": vt},
+                "final": {"normal": o.final_velocity.normal + wiggle,
+                          "tangential": o.final_velocity.tangential - wiggle,
+                          "angular": o.final_velocity.angular}
+            })
+        })
+        .collect()
+}
+
+#[tokio::test]
+async fn coefficients_are_recovered_within_their_standard_errors_in_any_order() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let mut data = observations();
+    let (status, _, fit) = app
+        .post("/v1/fits/tangential", &json!({"observations": data}))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{fit}");
+    for (name, truth) in [
+        ("restitution", 0.93),
+        ("friction", 0.123),
+        ("tangential_restitution", 0.34),
+    ] {
+        let value = fit[name]["value"].as_f64().unwrap();
+        let se = fit[name]["standard_error"].as_f64().unwrap();
+        assert!(
+            (value - truth).abs() <= 3.0 * se + 1e-12,
+            "{name}: {value} ± {se}"
+        );
+    }
+    let regimes = fit["regimes"].as_array().unwrap();
+    assert_eq!(regimes.len(), 30);
+    assert_eq!(regimes[0], "restitution");
+    assert_eq!(regimes[29], "sliding");
+    assert!(fit["r_squared"].as_f64().unwrap() > 0.999);
+    data.reverse();
+    let (_, _, reversed) = app
+        .post("/v1/fits/tangential", &json!({"observations": data}))
+        .await;
+    let close = |a: &Value, b: &Value| (a.as_f64().unwrap() - b.as_f64().unwrap()).abs() < 1e-12;
+    assert!(close(&reversed["friction"]["value"], &fit["friction"]["value"]));
+    assert!(close(
+        &reversed["tangential_restitution"]["value"],
+        &fit["tangential_restitution"]["value"]
+    ));
+}
+
+#[tokio::test]
+async fn too_few_or_invalid_observations_are_422_naming_the_member() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let data = observations();
+    let (status, _, problem) = app
+        .post("/v1/fits/tangential", &json!({"observations": data[..2]}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/observations");
+    let mut bad = data[..5].to_vec();
+    bad[3]["initial"]["normal"] = json!(1.0);
+    let (status, _, problem) = app
+        .post("/v1/fits/tangential", &json!({"observations": bad}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/observations/3");
+    let mut bad = data[..5].to_vec();
+    bad[1]["body"]["mass"] = json!(-1.0);
+    let (status, _, problem) = app
+        .post("/v1/fits/tangential", &json!({"observations": bad}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/observations/1/body");
+}
