@@ -57,8 +57,19 @@ impl Drop for ActiveStream {
     }
 }
 
-/// Points per chunk: the unit of parallel work and of streaming.
-const CHUNK_POINTS: u64 = 4096;
+/// Bytes per chunk of formatted rows: the unit of parallel work and of
+/// streaming. A stream holds at most `QUEUED_CHUNKS` chunks in its queue and
+/// two per worker thread in flight, so its memory is a few MiB whatever its size.
+const CHUNK_BYTES: u64 = 256 * 1024;
+/// Bytes a formatted cell takes at most (a shortest-round-trip double and a separator).
+const CELL_BYTES: u64 = 24;
+
+impl RowWriter {
+    /// Points per chunk: about `CHUNK_BYTES` of output, between 64 and 4,096 rows.
+    fn chunk_points(&self) -> u64 {
+        (CHUNK_BYTES / (CELL_BYTES * (self.names.len() as u64 + 1))).clamp(64, 4096)
+    }
+}
 /// Chunks queued between the workers and the socket.
 const QUEUED_CHUNKS: usize = 4;
 
@@ -835,7 +846,7 @@ fn table<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter) -> Vec<u8> {
     let mut out = writer.header();
     let mut errors = 0u64;
     sweep.run_parallel(
-        CHUNK_POINTS,
+        writer.chunk_points(),
         |range| chunk(sweep, writer, range),
         |(bytes, failed)| {
             out.extend_from_slice(&bytes);
@@ -855,7 +866,8 @@ fn table<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter) -> Vec<u8> {
 
 /// One chunk of rows and its number of failed points.
 fn chunk<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter, range: std::ops::Range<u64>) -> (Vec<u8>, u64) {
-    let mut out = Vec::with_capacity((range.end - range.start) as usize * 24 * (writer.names.len() + 1));
+    let mut out =
+        Vec::with_capacity(((range.end - range.start) * CELL_BYTES) as usize * (writer.names.len() + 1));
     let mut failed = 0;
     sweep.for_each_in(range, |row| {
         failed += u64::from(row.outcome.is_err());
@@ -888,7 +900,7 @@ where
             return;
         }
         let finished = sweep.run_parallel(
-            CHUNK_POINTS,
+            writer.chunk_points(),
             |range| {
                 if tx.is_closed() {
                     return Vec::new();
