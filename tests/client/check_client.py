@@ -4,6 +4,7 @@ Usage: python check_client.py BASE_URL   (the generated package must be installe
 Exits non-zero if any call fails or any value is off.
 """
 
+import json
 import math
 import sys
 
@@ -14,12 +15,17 @@ from restitution_client.api.impacts import (
     impacts_tangential,
     impacts_torsional,
 )
+from restitution_client.api.fits import fits_tangential
 from restitution_client.api.service import healthz
+from restitution_client.api.sweeps import sweeps
 from restitution_client.models import (
     NormalRequest,
     ObliqueRequest,
     PlanarResponse,
     Problem,
+    SweepRequest,
+    TangentialFitRequest,
+    TangentialFitResponse,
     TangentialRequest,
     TorsionalRequest,
     TorsionalResponse,
@@ -93,6 +99,34 @@ def main(base):
     response = impacts_oblique.sync_detailed(client=client, body=ObliqueRequest.from_dict(maw(2.0, friction=-1.0)))
     check("problem", response.status_code == 422 and isinstance(response.parsed, Problem)
           and response.parsed.pointer == "/friction", repr(response.parsed))
+
+    # A sweep of Figure 3's restitution line, as a JSON table.
+    sweep = SweepRequest.from_dict({
+        "case": "tangential",
+        "base": maw(0.0, friction=0.123, tangential_restitution=0.34),
+        "axes": [{"path": "/velocity/tangential", "values": [0.1, 0.2, 2.0]}],
+        "outputs": ["/contact_velocity/final/tangential", "/regime"],
+    })
+    response = sweeps.sync_detailed(client=client, body=sweep)
+    table = json.loads(response.content)
+    check("sweep", response.status_code == 200 and table["points"] == 3
+          and close(table["rows"][0][1], -0.034) and table["rows"][2][2] == "sliding", repr(table))
+
+    # Fit: coefficients back from observations the service itself computed.
+    observations = []
+    for vt in [0.05, 0.1, 0.2, 0.3, 1.0, 1.5, 2.0, 3.0]:
+        out = impacts_tangential.sync(client=client, body=TangentialRequest.from_dict(
+            maw(vt, friction=0.123, tangential_restitution=0.34)))
+        observations.append({
+            "body": {"mass": 1.0, "inertia": 0.00125},
+            "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+            "initial": {"normal": -1.0, "tangential": vt, "angular": 0.0},
+            "final": out.final_velocity.to_dict(),
+        })
+    fit = fits_tangential.sync(client=client, body=TangentialFitRequest.from_dict({"observations": observations}))
+    check("fit", isinstance(fit, TangentialFitResponse) and close(fit.restitution.value, 0.93, 1e-9)
+          and close(fit.friction.value, 0.123, 1e-9) and close(fit.tangential_restitution.value, 0.34, 1e-9),
+          repr(fit))
 
     print(f"{len(FAILURES)} failed" if FAILURES else "all client checks passed")
     return 1 if FAILURES else 0
