@@ -100,3 +100,45 @@ async fn too_few_or_invalid_observations_are_422_naming_the_member() {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(problem["pointer"], "/observations/1/body");
 }
+
+#[tokio::test]
+async fn torsional_coefficients_are_recovered_over_http() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let observations: Vec<Value> = (0..20)
+        .map(|i| {
+            let spin = -50.0 + 5.5 * f64::from(i);
+            let impact = restitution::torsional::TorsionalImpact {
+                mass: 0.1,
+                normal_inertia: 3.6e-5,
+                normal_velocity: -3.0,
+                spin,
+                restitution: 0.8,
+                torsional_restitution: 0.2,
+                torsional_friction: 0.3,
+                pitch_radius: 0.005,
+            };
+            let o = restitution::torsional::solve(&impact, false).unwrap();
+            json!({
+                "body": {"mass": 0.1, "normal_inertia": 3.6e-5}, "pitch_radius": 0.005,
+                "initial": {"normal": -3.0, "spin": spin},
+                "final": {"normal": o.final_normal_velocity, "spin": o.final_spin + 0.1 * (f64::from(i)).cos()}
+            })
+        })
+        .collect();
+    let (status, _, fit) = app
+        .post("/v1/fits/torsional", &json!({"observations": observations}))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{fit}");
+    for (name, truth) in [("torsional_restitution", 0.2), ("torsional_friction", 0.3)] {
+        let value = fit[name]["value"].as_f64().unwrap();
+        let se = fit[name]["standard_error"].as_f64().unwrap();
+        assert!((value - truth).abs() <= 3.0 * se, "{name}: {value} ± {se}");
+    }
+    assert_eq!(fit["regimes"][0], "sliding");
+    assert_eq!(fit["regimes"][9], "restitution");
+    let (status, _, problem) = app
+        .post("/v1/fits/torsional", &json!({"observations": observations[..2]}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/observations");
+}

@@ -1,16 +1,16 @@
-//! `POST /v1/fits/tangential`: coefficients of the bilinear tangential model
-//! identified from measured impacts (see [`crate::fit`]).
+//! `POST /v1/fits/tangential` and `POST /v1/fits/torsional`: coefficients of
+//! the bilinear models identified from measured impacts (see [`crate::fit`]).
 
 use axum::Json;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::dto::{ContactDto, RegimeDto, RigidBodyDto, VelocityDto};
+use super::dto::{ContactDto, RegimeDto, RigidBodyDto, TorsionalRegimeDto, VelocityDto};
 use super::extract::ApiJson;
-use super::impacts::ImpactProblems;
+use super::impacts::{ImpactProblems, TorsionalBodyDto};
 use super::problem::ApiError;
-use crate::fit::{self, Estimate, FitError, Observation};
+use crate::fit::{self, Estimate, FitError, Observation, TorsionalObservation};
 use crate::scene::Body;
 
 /// One measured impact: geometry, and velocities before and after.
@@ -109,19 +109,7 @@ pub async fn fits_tangential(
             r#final: o.final_.into(),
         });
     }
-    let fit = fit::tangential(&observations).map_err(|error| {
-        let pointer = match &error {
-            FitError::NotAnImpact { index, .. } => format!("/observations/{index}"),
-            _ => "/observations".to_owned(),
-        };
-        ApiError::new(
-            StatusCode::UNPROCESSABLE_ENTITY,
-            "unfittable",
-            "Observations cannot be fitted",
-            error.to_string(),
-        )
-        .at(pointer)
-    })?;
+    let fit = fit::tangential(&observations).map_err(unfittable)?;
     Ok(Json(TangentialFitResponse {
         restitution: fit.restitution.into(),
         friction: fit.friction.map(Into::into),
@@ -132,6 +120,125 @@ pub async fn fits_tangential(
             .into_iter()
             .map(|r| r.is_finite().then_some(r))
             .collect(),
+        r_squared: fit.r_squared.is_finite().then_some(fit.r_squared),
+    }))
+}
+
+/// Normal velocity and spin after a torsional impact.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpinStateDto {
+    /// Normal velocity of the centre of mass.
+    pub normal: f64,
+    /// Spin about the normal.
+    pub spin: f64,
+}
+
+/// One measured torsional impact.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TorsionalObservationDto {
+    /// Mass and moment of inertia about the normal.
+    pub body: TorsionalBodyDto,
+    /// ρ_p: pitch radius of the torsional friction impulse (> 0).
+    #[schema(exclusive_minimum = 0.0)]
+    pub pitch_radius: f64,
+    /// Before the impact (v_n < 0, ω_n).
+    pub initial: SpinStateDto,
+    /// After the impact (V_n, Ω_n).
+    #[serde(rename = "final")]
+    pub final_: SpinStateDto,
+}
+
+/// Measured torsional impacts to fit.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({"observations": [
+    {"body": {"mass": 0.1, "normal_inertia": 0.000036}, "pitch_radius": 0.005,
+     "initial": {"normal": -3.0, "spin": 10.0}, "final": {"normal": 2.4, "spin": -2.0}},
+    {"body": {"mass": 0.1, "normal_inertia": 0.000036}, "pitch_radius": 0.005,
+     "initial": {"normal": -3.0, "spin": 40.0}, "final": {"normal": 2.4, "spin": 9.5}},
+    {"body": {"mass": 0.1, "normal_inertia": 0.000036}, "pitch_radius": 0.005,
+     "initial": {"normal": -3.0, "spin": 80.0}, "final": {"normal": 2.4, "spin": 41.5}}
+]}))]
+pub struct TorsionalFitRequest {
+    /// At least three impacts, in any order, in either branch.
+    #[schema(min_items = 3)]
+    pub observations: Vec<TorsionalObservationDto>,
+}
+
+/// The fitted torsional model.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct TorsionalFitResponse {
+    /// e, from V_n = −e v_n.
+    pub restitution: EstimateDto,
+    /// e_z (Eq 28).
+    pub torsional_restitution: EstimateDto,
+    /// μ_z (Eq 30); null when no point slides.
+    pub torsional_friction: Option<EstimateDto>,
+    /// The branch of each observation under the fitted model, in input order.
+    pub regimes: Vec<TorsionalRegimeDto>,
+    /// Observed minus fitted Ω_n, in input order.
+    pub residuals: Vec<f64>,
+    /// 1 − SS_res/SS_tot of Ω_n; null when Ω_n does not vary.
+    pub r_squared: Option<f64>,
+}
+
+fn unfittable(error: FitError) -> ApiError {
+    let pointer = match &error {
+        FitError::NotAnImpact { index, .. } => format!("/observations/{index}"),
+        _ => "/observations".to_owned(),
+    };
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "unfittable",
+        "Observations cannot be fitted",
+        error.to_string(),
+    )
+    .at(pointer)
+}
+
+/// Identify e, e_z and μ_z of the torsional model from measured impacts.
+#[utoipa::path(
+    post,
+    path = "/v1/fits/torsional",
+    tag = "fits",
+    request_body(content = TorsionalFitRequest, content_type = "application/json"),
+    responses((status = 200, description = "The fitted coefficients", body = TorsionalFitResponse), ImpactProblems)
+)]
+pub async fn fits_torsional(
+    ApiJson(req): ApiJson<TorsionalFitRequest>,
+) -> Result<Json<TorsionalFitResponse>, ApiError> {
+    let observations: Vec<TorsionalObservation> = req
+        .observations
+        .iter()
+        .map(|o| TorsionalObservation {
+            mass: o.body.mass,
+            normal_inertia: o.body.normal_inertia,
+            pitch_radius: o.pitch_radius,
+            normal_velocity: o.initial.normal,
+            spin: o.initial.spin,
+            final_normal_velocity: o.final_.normal,
+            final_spin: o.final_.spin,
+        })
+        .collect();
+    let fit = fit::torsional(&observations).map_err(unfittable)?;
+    Ok(Json(TorsionalFitResponse {
+        restitution: fit.restitution.into(),
+        torsional_restitution: fit.torsional_restitution.into(),
+        torsional_friction: fit.torsional_friction.map(Into::into),
+        regimes: fit
+            .sliding
+            .iter()
+            .map(|&s| {
+                if s {
+                    TorsionalRegimeDto::Sliding
+                } else {
+                    TorsionalRegimeDto::Restitution
+                }
+            })
+            .collect(),
+        residuals: fit.residuals,
         r_squared: fit.r_squared.is_finite().then_some(fit.r_squared),
     }))
 }

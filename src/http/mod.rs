@@ -104,6 +104,7 @@ fn routes() -> OpenApiRouter {
         .routes(routes!(impacts::impacts_torsional))
         .routes(routes!(sweeps::sweeps))
         .routes(routes!(fits::fits_tangential))
+        .routes(routes!(fits::fits_torsional))
         .routes(routes!(healthz))
 }
 

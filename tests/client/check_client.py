@@ -15,7 +15,7 @@ from restitution_client.api.impacts import (
     impacts_tangential,
     impacts_torsional,
 )
-from restitution_client.api.fits import fits_tangential
+from restitution_client.api.fits import fits_tangential, fits_torsional
 from restitution_client.api.service import healthz
 from restitution_client.api.sweeps import sweeps
 from restitution_client.models import (
@@ -27,6 +27,7 @@ from restitution_client.models import (
     TangentialFitRequest,
     TangentialFitResponse,
     TangentialRequest,
+    TorsionalFitRequest,
     TorsionalRequest,
     TorsionalResponse,
 )
@@ -127,6 +128,14 @@ def main(base):
     check("fit", isinstance(fit, TangentialFitResponse) and close(fit.restitution.value, 0.93, 1e-9)
           and close(fit.friction.value, 0.123, 1e-9) and close(fit.tangential_restitution.value, 0.34, 1e-9),
           repr(fit))
+
+    # Torsional fit from the rubber ball of examples/figure4 (switch 22.5 rad/s).
+    ball = {"body": {"mass": 0.1, "normal_inertia": 0.000036}, "pitch_radius": 0.005}
+    spins = [(-80.0, -41.5), (-10.0, 2.0), (5.0, -1.0), (10.0, -2.0), (40.0, 9.5), (80.0, 41.5)]
+    torsional_fit = fits_torsional.sync(client=client, body=TorsionalFitRequest.from_dict({"observations": [
+        dict(ball, initial={"normal": -3.0, "spin": w}, final={"normal": 2.4, "spin": s}) for w, s in spins]}))
+    check("torsional fit", torsional_fit is not None and close(torsional_fit.torsional_restitution.value, 0.2, 1e-9)
+          and close(torsional_fit.torsional_friction.value, 0.3, 1e-9), repr(torsional_fit))
 
     print(f"{len(FAILURES)} failed" if FAILURES else "all client checks passed")
     return 1 if FAILURES else 0
