@@ -1,6 +1,7 @@
 //! Validation against experiment: Kharaz, Gorham & Salman (2001), 5 mm Al₂O₃
-//! spheres on glass at 3.9 m/s (`../shared/validation/`, three independent
-//! digitizations of the published figures). A sphere (`I = 2/5 m R²`, contact
+//! spheres on glass at 3.9 m/s (`tests/data/`, copied from
+//! `../shared/validation/`: three independent digitizations of the published
+//! figures). A sphere (`I = 2/5 m R²`, contact
 //! at `d_c = 0`, `d_d = R`) in the planar model with `e = 0.98`, `f = 0.092`:
 //! (a) Coulomb friction alone (`e_t = 0`), (b) the bilinear tangential
 //! restitution model with `e_t` fitted to the data. Deviations per quantity and
@@ -11,9 +12,11 @@ use std::collections::BTreeMap;
 
 use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
 
+/// A copy of `../shared/validation/kharaz2001_al2o3_on_glass_experiment.csv`
+/// (provenance in its header), kept in the repository so a clean clone tests it.
 const DATA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../shared/validation/kharaz2001_al2o3_on_glass_experiment.csv"
+    "/tests/data/kharaz2001_al2o3_on_glass_experiment.csv"
 );
 const RADIUS: f64 = 0.0025;
 const SPEED: f64 = 3.9;
