@@ -8,9 +8,9 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
 use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
-use restitution::{Contact, PlanarVelocity};
+use restitution::{Contact, Input, PlanarVelocity};
 
 const POINTS: u64 = 200_000;
 
@@ -56,9 +56,9 @@ fn base() -> PlanarPoint {
     }
 }
 
-fn sweep(param: PlanarParam, columns: &[PlanarColumn], points: u64) -> Sweep<PlanarSweep> {
+fn sweep(param: Input, columns: &[PlanarColumn], points: u64) -> Sweep<PlanarSweep> {
     let (start, stop) = match param {
-        PlanarParam::Friction => (0.0, 1.0),
+        Input::Friction => (0.0, 1.0),
         _ => (-5.0, 5.0),
     };
     let case = PlanarSweep::new(PlanarLaw::Friction, &base(), &[param], columns.to_vec());
@@ -129,17 +129,13 @@ fn single_core(c: &mut Criterion) {
     let mut group = c.benchmark_group("sweep_oblique_one_core");
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);
-    let all = sweep(PlanarParam::TangentialVelocity, &ALL, POINTS);
+    let all = sweep(Input::TangentialVelocity, &ALL, POINTS);
     let one = sweep(
-        PlanarParam::TangentialVelocity,
+        Input::TangentialVelocity,
         &[PlanarColumn::FinalContactTangential],
         POINTS,
     );
-    let fixed = sweep(
-        PlanarParam::Friction,
-        &[PlanarColumn::FinalContactTangential],
-        POINTS,
-    );
+    let fixed = sweep(Input::Friction, &[PlanarColumn::FinalContactTangential], POINTS);
     group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
     group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
     group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
@@ -166,7 +162,7 @@ fn all_cores(c: &mut Criterion) {
         ("all_outputs", &ALL[..]),
         ("one_output", &[PlanarColumn::FinalContactTangential][..]),
     ] {
-        let s = sweep(PlanarParam::TangentialVelocity, columns, points);
+        let s = sweep(Input::TangentialVelocity, columns, points);
         group.bench_with_input(BenchmarkId::new("run_parallel", name), &s, |b, s| {
             b.iter(|| {
                 let mut total = 0.0;

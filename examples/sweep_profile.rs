@@ -7,9 +7,9 @@
 //! callgrind_annotate --inclusive=yes callgrind.out | head -40
 //! ```
 
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
 use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
-use restitution::{Contact, PlanarVelocity};
+use restitution::{Contact, Input, PlanarVelocity};
 
 fn main() {
     let base = PlanarPoint {
@@ -33,14 +33,9 @@ fn main() {
         PlanarColumn::CriticalImpulseRatio,
         PlanarColumn::NormalizedEnergyLoss,
     ];
-    let case = PlanarSweep::new(
-        PlanarLaw::Friction,
-        &base,
-        &[PlanarParam::TangentialVelocity],
-        columns,
-    );
+    let case = PlanarSweep::new(PlanarLaw::Friction, &base, &[Input::TangentialVelocity], columns);
     let axes = vec![Axis {
-        param: PlanarParam::TangentialVelocity,
+        param: Input::TangentialVelocity,
         values: AxisValues::Linspace {
             start: -5.0,
             stop: 5.0,

@@ -5,11 +5,11 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarParam, PlanarPoint, PlanarSweep};
-use restitution::sweep::torsional::{TorsionalColumn, TorsionalParam, TorsionalSweep};
+use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
+use restitution::sweep::torsional::{TorsionalColumn, TorsionalSweep};
 use restitution::sweep::{Axis, AxisValues, Combine, Sweep, SweepCase};
 use restitution::torsional::TorsionalImpact;
-use restitution::{Contact, PlanarVelocity};
+use restitution::{Contact, Input, PlanarVelocity};
 
 struct Counting;
 
@@ -36,7 +36,7 @@ fn allocations_for<C: SweepCase>(sweep: &Sweep<C>, points: u64) -> u64 {
     ALLOCATIONS.load(Ordering::Relaxed) - before
 }
 
-fn planar(law: PlanarLaw, param: PlanarParam, columns: Vec<PlanarColumn>) -> Sweep<PlanarSweep> {
+fn planar(law: PlanarLaw, param: Input, columns: Vec<PlanarColumn>) -> Sweep<PlanarSweep> {
     let base = PlanarPoint {
         mass: 1.0,
         inertia: 0.00125,
@@ -61,11 +61,7 @@ fn planar(law: PlanarLaw, param: PlanarParam, columns: Vec<PlanarColumn>) -> Swe
     };
     let case = PlanarSweep::new(law, &base, &[param], columns);
     // Values crossing regimes and invalid points (v_n > 0, f < 0) alike.
-    let start = if param == PlanarParam::Friction {
-        -0.001
-    } else {
-        -5.0
-    };
+    let start = if param == Input::Friction { -0.001 } else { -5.0 };
     let axes = vec![Axis {
         param,
         values: AxisValues::Linspace {
@@ -86,31 +82,19 @@ fn no_allocation_per_point() {
         PlanarColumn::NormalizedEnergyLoss,
     ];
     let sweeps = [
-        planar(
-            PlanarLaw::Friction,
-            PlanarParam::TangentialVelocity,
-            every.clone(),
-        ),
+        planar(PlanarLaw::Friction, Input::TangentialVelocity, every.clone()),
         planar(
             PlanarLaw::TangentialRestitution,
-            PlanarParam::TangentialVelocity,
+            Input::TangentialVelocity,
             every.clone(),
         ),
         planar(
             PlanarLaw::KineticRestitution,
-            PlanarParam::NormalVelocity,
+            Input::NormalVelocity,
             every.clone(),
         ),
-        planar(
-            PlanarLaw::ImpulseRatio,
-            PlanarParam::AngularVelocity,
-            every.clone(),
-        ),
-        planar(
-            PlanarLaw::Friction,
-            PlanarParam::Friction,
-            vec![PlanarColumn::Regime],
-        ),
+        planar(PlanarLaw::ImpulseRatio, Input::AngularVelocity, every.clone()),
+        planar(PlanarLaw::Friction, Input::Friction, vec![PlanarColumn::Regime]),
     ];
     for sweep in &sweeps {
         let small = allocations_for(sweep, 1_000);
@@ -131,7 +115,7 @@ fn no_allocation_per_point() {
             pitch_radius: 0.005,
         },
         vec![Axis {
-            param: TorsionalParam::Spin,
+            param: Input::Spin,
             values: AxisValues::Linspace {
                 start: -100.0,
                 stop: 100.0,

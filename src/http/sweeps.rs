@@ -27,10 +27,11 @@ use super::impacts::{
     NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest, normal_input, oblique_input,
     tangential_input, torsional_input,
 };
-use super::problem::{ApiError, Problem};
+use super::problem::{ApiError, Problem, input_pointer};
 use super::svg;
-use crate::sweep::planar::{PlanarColumn, PlanarParam, PlanarSweep};
-use crate::sweep::torsional::{TorsionalColumn, TorsionalParam, TorsionalSweep};
+use crate::error::Input;
+use crate::sweep::planar::{PLANAR_INPUTS, PlanarColumn, PlanarSweep};
+use crate::sweep::torsional::{TORSIONAL_INPUTS, TorsionalColumn, TorsionalSweep};
 use crate::sweep::{Axis, AxisValues, Cell, Combine, GridError, Row, Sweep, SweepCase};
 
 /// Streamed sweeps whose producer is still working.
@@ -296,11 +297,11 @@ pub async fn sweeps(
     match request.case {
         CaseDto::Torsional => {
             let base: TorsionalRequest = parse_value(request.base, "/base")?;
-            let params = axis_params(&request.axes, TORSIONAL_INPUTS, |_| Ok(()))?;
+            let params = axis_params(&request.axes, &TORSIONAL_INPUTS, |_| Ok(()))?;
             let columns = output_columns(request.outputs.as_deref(), TORSIONAL_OUTPUTS)?;
             let case = TorsionalSweep::new(columns.iter().map(|(_, c)| *c).collect());
             let sweep = build(case, torsional_input(&base), params, axes, combine, limit, format)?;
-            respond(sweep, &request.axes, names(&columns), format, stall).await
+            respond(sweep, names(&columns), format, stall).await
         }
         planar => {
             let (law, point) = match planar {
@@ -308,7 +309,7 @@ pub async fn sweeps(
                 CaseDto::Oblique => oblique_input(&parse_value::<ObliqueRequest>(request.base, "/base")?)?,
                 _ => tangential_input(&parse_value::<TangentialRequest>(request.base, "/base")?),
             };
-            let params = axis_params(&request.axes, PLANAR_INPUTS, |p| {
+            let params = axis_params(&request.axes, &PLANAR_INPUTS, |p| {
                 if law.reads(p) {
                     Ok(())
                 } else {
@@ -321,34 +322,10 @@ pub async fn sweeps(
             let columns = output_columns(request.outputs.as_deref(), PLANAR_OUTPUTS)?;
             let case = PlanarSweep::new(law, &point, &params, columns.iter().map(|(_, c)| *c).collect());
             let sweep = build(case, point, params, axes, combine, limit, format)?;
-            respond(sweep, &request.axes, names(&columns), format, stall).await
+            respond(sweep, names(&columns), format, stall).await
         }
     }
 }
-
-/// Numeric inputs of the planar cases, by pointer into their requests.
-const PLANAR_INPUTS: &[(&str, PlanarParam)] = &[
-    ("/body/mass", PlanarParam::Mass),
-    ("/body/inertia", PlanarParam::Inertia),
-    ("/contact/tangential_offset", PlanarParam::TangentialOffset),
-    ("/contact/normal_offset", PlanarParam::NormalOffset),
-    ("/velocity/normal", PlanarParam::NormalVelocity),
-    ("/velocity/tangential", PlanarParam::TangentialVelocity),
-    ("/velocity/angular", PlanarParam::AngularVelocity),
-    ("/restitution", PlanarParam::Restitution),
-    ("/friction", PlanarParam::Friction),
-    ("/impulse_ratio", PlanarParam::ImpulseRatio),
-    ("/tangential_restitution", PlanarParam::TangentialRestitution),
-    ("/kinetic_restitution/value", PlanarParam::KineticRestitution),
-    (
-        "/kinetic_restitution/approach_impulse_ratio",
-        PlanarParam::ApproachImpulseRatio,
-    ),
-    (
-        "/kinetic_restitution/rebound_impulse_ratio",
-        PlanarParam::ReboundImpulseRatio,
-    ),
-];
 
 /// Outputs of the planar cases, by pointer into their responses.
 const PLANAR_OUTPUTS: &[(&str, PlanarColumn)] = &[
@@ -383,18 +360,6 @@ const PLANAR_OUTPUTS: &[(&str, PlanarColumn)] = &[
     ("/energy/loss", PlanarColumn::EnergyLoss),
     ("/energy/max_loss", PlanarColumn::MaxEnergyLoss),
     ("/energy/normalized_loss", PlanarColumn::NormalizedEnergyLoss),
-];
-
-/// Numeric inputs of the torsional case.
-const TORSIONAL_INPUTS: &[(&str, TorsionalParam)] = &[
-    ("/body/mass", TorsionalParam::Mass),
-    ("/body/normal_inertia", TorsionalParam::NormalInertia),
-    ("/velocity/normal", TorsionalParam::NormalVelocity),
-    ("/velocity/spin", TorsionalParam::Spin),
-    ("/restitution", TorsionalParam::Restitution),
-    ("/torsion/restitution", TorsionalParam::TorsionalRestitution),
-    ("/torsion/friction", TorsionalParam::TorsionalFriction),
-    ("/torsion/pitch_radius", TorsionalParam::PitchRadius),
 ];
 
 /// Outputs of the torsional case.
@@ -445,11 +410,13 @@ fn axis_values(axes: &[AxisDto]) -> Result<Vec<AxisValues>, ApiError> {
         .collect()
 }
 
-fn axis_params<P: Copy>(
+/// The input each axis sets: its path must be the pointer of one of `inputs`
+/// (the same pointers the errors of the case's own endpoint use).
+fn axis_params(
     axes: &[AxisDto],
-    inputs: &[(&str, P)],
-    read: impl Fn(P) -> Result<(), String>,
-) -> Result<Vec<P>, ApiError> {
+    inputs: &[Input],
+    read: impl Fn(Input) -> Result<(), String>,
+) -> Result<Vec<Input>, ApiError> {
     let mut params = Vec::with_capacity(axes.len());
     for (i, axis) in axes.iter().enumerate() {
         let pointer = format!("/axes/{i}/path");
@@ -460,8 +427,8 @@ fn axis_params<P: Copy>(
                 format!("{} is swept by an earlier axis", axis.path),
             ));
         }
-        let Some(&(_, param)) = inputs.iter().find(|(name, _)| *name == axis.path) else {
-            let known: Vec<&str> = inputs.iter().map(|(name, _)| *name).collect();
+        let Some(&param) = inputs.iter().find(|&&input| input_pointer(input) == axis.path) else {
+            let known: Vec<&str> = inputs.iter().map(|&input| input_pointer(input)).collect();
             return Err(structure(
                 pointer,
                 "Invalid sweep axis",
@@ -777,15 +744,14 @@ fn push_string(out: &mut Vec<u8>, s: &str) {
 /// Produces the response: buffered (JSON, SVG) or streamed (CSV, NDJSON).
 async fn respond<C>(
     sweep: Sweep<C>,
-    axes: &[AxisDto],
     outputs: Vec<&'static str>,
     format: Format,
     stall: Duration,
 ) -> Result<Response, ApiError>
 where
-    C: SweepCase + Send + 'static,
+    C: SweepCase<Param = Input> + Send + 'static,
 {
-    let axis_names: Vec<&'static str> = sweep_axis_names(axes);
+    let axis_names: Vec<&'static str> = sweep.axes().iter().map(|a| input_pointer(a.param)).collect();
     let mut names = axis_names.clone();
     names.extend(&outputs);
     let points = sweep.points();
@@ -825,20 +791,6 @@ fn internal() -> ApiError {
         "Internal error",
         "the sweep failed",
     )
-}
-
-/// The axis paths as the static names of the input tables (already validated).
-fn sweep_axis_names(axes: &[AxisDto]) -> Vec<&'static str> {
-    axes.iter()
-        .map(|a| {
-            PLANAR_INPUTS
-                .iter()
-                .map(|(n, _)| *n)
-                .chain(TORSIONAL_INPUTS.iter().map(|(n, _)| *n))
-                .find(|n| *n == a.path)
-                .unwrap_or("axis")
-        })
-        .collect()
 }
 
 /// The JSON table, computed in parallel chunks.

@@ -1,7 +1,7 @@
 //! Sweeps of the planar cases (normal, oblique, tangential restitution).
 
 use super::{Cell, SweepCase};
-use crate::error::{ImpactError, Result};
+use crate::error::{ImpactError, Input, Result};
 use crate::normal::{self, NormalImpact};
 use crate::oblique::{self, KineticRestitution, TangentialLaw};
 use crate::planar::{Outputs, PlanarOutcome};
@@ -26,18 +26,21 @@ pub enum PlanarLaw {
 }
 
 impl PlanarLaw {
-    /// Whether the law reads `param`.
-    pub fn reads(self, param: PlanarParam) -> bool {
-        use PlanarParam as P;
-        match param {
-            P::Mass | P::NormalVelocity | P::TangentialVelocity | P::AngularVelocity => true,
-            P::Inertia | P::TangentialOffset | P::NormalOffset => self != PlanarLaw::PointMass,
-            P::Restitution => self != PlanarLaw::KineticRestitution,
-            P::Friction => matches!(self, PlanarLaw::Friction | PlanarLaw::TangentialRestitution),
-            P::ImpulseRatio => self == PlanarLaw::ImpulseRatio,
-            P::TangentialRestitution => self == PlanarLaw::TangentialRestitution,
-            P::KineticRestitution | P::ApproachImpulseRatio | P::ReboundImpulseRatio => {
+    /// Whether the law reads `input` (never a torsional-only input).
+    pub fn reads(self, input: Input) -> bool {
+        use Input as I;
+        match input {
+            I::Mass | I::NormalVelocity | I::TangentialVelocity | I::AngularVelocity => true,
+            I::Inertia | I::TangentialOffset | I::NormalOffset => self != PlanarLaw::PointMass,
+            I::Restitution => self != PlanarLaw::KineticRestitution,
+            I::Friction => matches!(self, PlanarLaw::Friction | PlanarLaw::TangentialRestitution),
+            I::ImpulseRatio => self == PlanarLaw::ImpulseRatio,
+            I::TangentialRestitution => self == PlanarLaw::TangentialRestitution,
+            I::KineticRestitution | I::ApproachImpulseRatio | I::ReboundImpulseRatio => {
                 self == PlanarLaw::KineticRestitution
+            }
+            I::NormalInertia | I::Spin | I::TorsionalRestitution | I::TorsionalFriction | I::PitchRadius => {
+                false
             }
         }
     }
@@ -78,53 +81,36 @@ pub struct PlanarPoint {
     pub kinetic: KineticRestitution,
 }
 
-/// An input of a planar impact that an axis can set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum PlanarParam {
-    /// `m`.
-    Mass,
-    /// `I`.
-    Inertia,
-    /// `d_c`.
-    TangentialOffset,
-    /// `d_d`.
-    NormalOffset,
-    /// `v_n`.
-    NormalVelocity,
-    /// `v_t`.
-    TangentialVelocity,
-    /// `ω`.
-    AngularVelocity,
-    /// `e`.
-    Restitution,
-    /// `f`.
-    Friction,
-    /// `μ`.
-    ImpulseRatio,
-    /// `e_t`.
-    TangentialRestitution,
-    /// `R`.
-    KineticRestitution,
-    /// `μ_A`.
-    ApproachImpulseRatio,
-    /// `μ_R`.
-    ReboundImpulseRatio,
-}
+/// The inputs of the planar cases an axis can set.
+pub const PLANAR_INPUTS: [Input; 14] = [
+    Input::Mass,
+    Input::Inertia,
+    Input::TangentialOffset,
+    Input::NormalOffset,
+    Input::NormalVelocity,
+    Input::TangentialVelocity,
+    Input::AngularVelocity,
+    Input::Restitution,
+    Input::Friction,
+    Input::ImpulseRatio,
+    Input::TangentialRestitution,
+    Input::KineticRestitution,
+    Input::ApproachImpulseRatio,
+    Input::ReboundImpulseRatio,
+];
 
-impl PlanarParam {
-    /// Whether the parameter is part of the scene (body, contact, velocity).
-    pub fn is_scene(self) -> bool {
-        matches!(
-            self,
-            PlanarParam::Mass
-                | PlanarParam::Inertia
-                | PlanarParam::TangentialOffset
-                | PlanarParam::NormalOffset
-                | PlanarParam::NormalVelocity
-                | PlanarParam::TangentialVelocity
-                | PlanarParam::AngularVelocity
-        )
-    }
+/// Whether an input is part of the scene (body, contact, velocity).
+fn is_scene(input: Input) -> bool {
+    matches!(
+        input,
+        Input::Mass
+            | Input::Inertia
+            | Input::TangentialOffset
+            | Input::NormalOffset
+            | Input::NormalVelocity
+            | Input::TangentialVelocity
+            | Input::AngularVelocity
+    )
 }
 
 /// An output of a planar impact that a column can show.
@@ -222,18 +208,13 @@ pub struct PlanarSweep {
 impl PlanarSweep {
     /// Prepares `law` for a sweep from `base` in which the axes set `swept`,
     /// computing only what `columns` need.
-    pub fn new(
-        law: PlanarLaw,
-        base: &PlanarPoint,
-        swept: &[PlanarParam],
-        columns: Vec<PlanarColumn>,
-    ) -> Self {
+    pub fn new(law: PlanarLaw, base: &PlanarPoint, swept: &[Input], columns: Vec<PlanarColumn>) -> Self {
         let outputs = Outputs {
             critical_impulse_ratio: columns.contains(&PlanarColumn::CriticalImpulseRatio),
             energy: columns.iter().any(|c| c.needs_energy()),
         };
         let fixed_scene =
-            (law != PlanarLaw::PointMass && !swept.iter().any(|p| p.is_scene())).then(|| scene(base));
+            (law != PlanarLaw::PointMass && !swept.iter().any(|&p| is_scene(p))).then(|| scene(base));
         PlanarSweep {
             law,
             columns,
@@ -312,24 +293,31 @@ fn scene(p: &PlanarPoint) -> Result<PlanarScene> {
 
 impl SweepCase for PlanarSweep {
     type Point = PlanarPoint;
-    type Param = PlanarParam;
+    type Param = Input;
 
-    fn set(p: &mut PlanarPoint, param: PlanarParam, v: f64) {
-        match param {
-            PlanarParam::Mass => p.mass = v,
-            PlanarParam::Inertia => p.inertia = v,
-            PlanarParam::TangentialOffset => p.contact.tangential_offset = v,
-            PlanarParam::NormalOffset => p.contact.normal_offset = v,
-            PlanarParam::NormalVelocity => p.velocity.normal = v,
-            PlanarParam::TangentialVelocity => p.velocity.tangential = v,
-            PlanarParam::AngularVelocity => p.velocity.angular = v,
-            PlanarParam::Restitution => p.restitution = v,
-            PlanarParam::Friction => p.friction = v,
-            PlanarParam::ImpulseRatio => p.impulse_ratio = v,
-            PlanarParam::TangentialRestitution => p.tangential_restitution = v,
-            PlanarParam::KineticRestitution => p.kinetic.value = v,
-            PlanarParam::ApproachImpulseRatio => p.kinetic.approach_impulse_ratio = v,
-            PlanarParam::ReboundImpulseRatio => p.kinetic.rebound_impulse_ratio = v,
+    /// Sets a planar input; torsional-only inputs are not part of a planar
+    /// point (callers choose axes from [`PLANAR_INPUTS`]) and leave it unchanged.
+    fn set(p: &mut PlanarPoint, input: Input, v: f64) {
+        match input {
+            Input::Mass => p.mass = v,
+            Input::Inertia => p.inertia = v,
+            Input::TangentialOffset => p.contact.tangential_offset = v,
+            Input::NormalOffset => p.contact.normal_offset = v,
+            Input::NormalVelocity => p.velocity.normal = v,
+            Input::TangentialVelocity => p.velocity.tangential = v,
+            Input::AngularVelocity => p.velocity.angular = v,
+            Input::Restitution => p.restitution = v,
+            Input::Friction => p.friction = v,
+            Input::ImpulseRatio => p.impulse_ratio = v,
+            Input::TangentialRestitution => p.tangential_restitution = v,
+            Input::KineticRestitution => p.kinetic.value = v,
+            Input::ApproachImpulseRatio => p.kinetic.approach_impulse_ratio = v,
+            Input::ReboundImpulseRatio => p.kinetic.rebound_impulse_ratio = v,
+            Input::NormalInertia
+            | Input::Spin
+            | Input::TorsionalRestitution
+            | Input::TorsionalFriction
+            | Input::PitchRadius => {}
         }
     }
 
@@ -375,13 +363,13 @@ mod tests {
         let fixed = PlanarSweep::new(
             PlanarLaw::TangentialRestitution,
             &base,
-            &[PlanarParam::Friction],
+            &[Input::Friction],
             columns.clone(),
         );
         let per_point = PlanarSweep::new(
             PlanarLaw::TangentialRestitution,
             &base,
-            &[PlanarParam::TangentialVelocity],
+            &[Input::TangentialVelocity],
             columns,
         );
         assert!(fixed.has_fixed_scene() && !per_point.has_fixed_scene());
@@ -401,11 +389,11 @@ mod tests {
         let case = PlanarSweep::new(
             PlanarLaw::Friction,
             &maw(),
-            &[PlanarParam::NormalVelocity],
+            &[Input::NormalVelocity],
             vec![PlanarColumn::Regime],
         );
         let axes = vec![Axis {
-            param: PlanarParam::NormalVelocity,
+            param: Input::NormalVelocity,
             values: AxisValues::List(vec![-1.0, 0.5, -2.0]),
         }];
         let sweep = Sweep::new(case, maw(), axes, Combine::Product, 10).unwrap();

@@ -1,29 +1,20 @@
 //! Sweeps of the torsional case.
 
 use super::{Cell, SweepCase};
-use crate::error::ImpactError;
+use crate::error::{ImpactError, Input};
 use crate::torsional::{self, TorsionalImpact, TorsionalOutcome};
 
-/// An input of a torsional impact that an axis can set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum TorsionalParam {
-    /// `m`.
-    Mass,
-    /// `I_n`.
-    NormalInertia,
-    /// `v_n`.
-    NormalVelocity,
-    /// `ω_n`.
-    Spin,
-    /// `e`.
-    Restitution,
-    /// `e_z`.
-    TorsionalRestitution,
-    /// `μ_z`.
-    TorsionalFriction,
-    /// `ρ_p`.
-    PitchRadius,
-}
+/// The inputs of the torsional case an axis can set.
+pub const TORSIONAL_INPUTS: [Input; 8] = [
+    Input::Mass,
+    Input::NormalInertia,
+    Input::NormalVelocity,
+    Input::Spin,
+    Input::Restitution,
+    Input::TorsionalRestitution,
+    Input::TorsionalFriction,
+    Input::PitchRadius,
+];
 
 /// An output of a torsional impact that a column can show.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -89,18 +80,21 @@ impl TorsionalSweep {
 
 impl SweepCase for TorsionalSweep {
     type Point = TorsionalImpact;
-    type Param = TorsionalParam;
+    type Param = Input;
 
-    fn set(p: &mut TorsionalImpact, param: TorsionalParam, v: f64) {
-        match param {
-            TorsionalParam::Mass => p.mass = v,
-            TorsionalParam::NormalInertia => p.normal_inertia = v,
-            TorsionalParam::NormalVelocity => p.normal_velocity = v,
-            TorsionalParam::Spin => p.spin = v,
-            TorsionalParam::Restitution => p.restitution = v,
-            TorsionalParam::TorsionalRestitution => p.torsional_restitution = v,
-            TorsionalParam::TorsionalFriction => p.torsional_friction = v,
-            TorsionalParam::PitchRadius => p.pitch_radius = v,
+    /// Sets a torsional input; planar-only inputs are not part of a torsional
+    /// impact (callers choose axes from [`TORSIONAL_INPUTS`]) and leave it unchanged.
+    fn set(p: &mut TorsionalImpact, input: Input, v: f64) {
+        match input {
+            Input::Mass => p.mass = v,
+            Input::NormalInertia => p.normal_inertia = v,
+            Input::NormalVelocity => p.normal_velocity = v,
+            Input::Spin => p.spin = v,
+            Input::Restitution => p.restitution = v,
+            Input::TorsionalRestitution => p.torsional_restitution = v,
+            Input::TorsionalFriction => p.torsional_friction = v,
+            Input::PitchRadius => p.pitch_radius = v,
+            _ => {}
         }
     }
 
