@@ -168,9 +168,8 @@ impl PlanarColumn {
         )
     }
 
-    /// The column's value in an outcome computed with the outputs it needs.
-    fn cell(self, o: &PlanarOutcome) -> Cell {
-        let energy = o.energy.unwrap_or_default();
+    /// The column's value; `energy` is the outcome's energies (zero when not computed).
+    fn cell(self, o: &PlanarOutcome, energy: &crate::energy::PlanarEnergy) -> Cell {
         Cell::Number(match self {
             PlanarColumn::FinalNormalVelocity => o.final_velocity.normal,
             PlanarColumn::FinalTangentialVelocity => o.final_velocity.tangential,
@@ -327,8 +326,9 @@ impl SweepCase for PlanarSweep {
 
     fn evaluate(&self, p: &PlanarPoint, cells: &mut [Cell]) -> std::result::Result<(), ImpactError> {
         let outcome = self.solve(p)?;
+        let energy = outcome.energy.unwrap_or_default();
         for (cell, column) in cells.iter_mut().zip(&self.columns) {
-            *cell = column.cell(&outcome);
+            *cell = column.cell(&outcome, &energy);
         }
         Ok(())
     }

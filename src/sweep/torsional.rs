@@ -47,8 +47,8 @@ impl TorsionalColumn {
         )
     }
 
-    fn cell(self, o: &TorsionalOutcome) -> Cell {
-        let energy = o.energy.unwrap_or_default();
+    /// The column's value; `energy` is the outcome's energies (zero when not computed).
+    fn cell(self, o: &TorsionalOutcome, energy: &crate::torsional::RotationalEnergy) -> Cell {
         Cell::Number(match self {
             TorsionalColumn::FinalNormalVelocity => o.final_normal_velocity,
             TorsionalColumn::FinalSpin => o.final_spin,
@@ -104,8 +104,9 @@ impl SweepCase for TorsionalSweep {
 
     fn evaluate(&self, p: &TorsionalImpact, cells: &mut [Cell]) -> Result<(), ImpactError> {
         let outcome = torsional::solve(p, self.energy)?;
+        let energy = outcome.energy.unwrap_or_default();
         for (cell, column) in cells.iter_mut().zip(&self.columns) {
-            *cell = column.cell(&outcome);
+            *cell = column.cell(&outcome, &energy);
         }
         Ok(())
     }
