@@ -13,6 +13,8 @@
 //!   Appendix's kinetic restitution (Eqs 1–19, A-1…A-16);
 //! - [`tangential`]: the bilinear tangential-restitution model (Eqs 20–27);
 //! - [`torsional`]: the bilinear torsional model (Eqs 28–31);
+//! - [`exact`]: the `exact` precision mode, correctly rounded outputs by
+//!   double-double arithmetic with a certified bound and a rational fallback;
 //! - [`sweep`]: any case over a grid of inputs, in parallel, computing only
 //!   the chosen outputs;
 //!
@@ -27,6 +29,7 @@
 
 pub mod energy;
 pub mod error;
+pub mod exact;
 pub mod fit;
 pub mod linear;
 pub mod normal;
@@ -41,5 +44,6 @@ pub mod torsional;
 pub mod http;
 
 pub use error::{AdmissibleInterval, ImpactError, Input, Output};
+pub use exact::Precision;
 pub use planar::{Outputs, PlanarOutcome, Regime};
 pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};

@@ -53,31 +53,48 @@ pub fn solve_scene(scene: &PlanarScene, restitution: f64, outputs: Outputs) -> R
     )
 }
 
+/// The validated inputs of a point-mass impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PointMass {
+    pub mass: f64,
+    pub vn: f64,
+    pub vt: f64,
+    pub e: f64,
+}
+
+impl PointMass {
+    /// Checks a point-mass request: no contact, no spin, approaching, `e ∈ [0, 1]`.
+    pub(crate) fn validate(impact: &NormalImpact) -> Result<Self> {
+        let mass = positive(Input::Mass, impact.mass)?;
+        if impact.contact.is_some() {
+            return Err(ImpactError::NeedsInertia {
+                input: Input::TangentialOffset,
+            });
+        }
+        let v = impact.velocity;
+        let vn = finite(Input::NormalVelocity, v.normal)?;
+        let vt = finite(Input::TangentialVelocity, v.tangential)?;
+        if finite(Input::AngularVelocity, v.angular)? != 0.0 {
+            return Err(ImpactError::NeedsInertia {
+                input: Input::AngularVelocity,
+            });
+        }
+        if vn >= 0.0 {
+            return Err(ImpactError::NotApproaching {
+                input: Input::NormalVelocity,
+                normal_contact_velocity: vn,
+            });
+        }
+        let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
+        Ok(PointMass { mass, vn, vt, e })
+    }
+}
+
 /// A point mass: `V_n = −e v_n`, `P_n = m (1 + e) |v_n|`, `V_t = v_t`.
 /// `T_M` is the whole initial energy (the mass stops), `T_L = ½ m (1 − e)(1 + e) v_n²`,
 /// and `μ_c = v_t / ((1 + e) v_n)`, the limit of Eq 14 for `k → ∞`.
 fn point_mass(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> {
-    let m = positive(Input::Mass, impact.mass)?;
-    if impact.contact.is_some() {
-        return Err(ImpactError::NeedsInertia {
-            input: Input::TangentialOffset,
-        });
-    }
-    let v = impact.velocity;
-    let vn = finite(Input::NormalVelocity, v.normal)?;
-    let vt = finite(Input::TangentialVelocity, v.tangential)?;
-    if finite(Input::AngularVelocity, v.angular)? != 0.0 {
-        return Err(ImpactError::NeedsInertia {
-            input: Input::AngularVelocity,
-        });
-    }
-    if vn >= 0.0 {
-        return Err(ImpactError::NotApproaching {
-            input: Input::NormalVelocity,
-            normal_contact_velocity: vn,
-        });
-    }
-    let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
+    let PointMass { mass: m, vn, vt, e } = PointMass::validate(impact)?;
     let final_normal = finite_output(Output::FinalNormalVelocity, -e * vn)?;
     let dn = (1.0 + e) * -vn;
     let normal_impulse = finite_output(Output::NormalImpulse, m * dn)?;

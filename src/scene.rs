@@ -130,6 +130,24 @@ impl PlanarScene {
         })
     }
 
+    /// A scene whose fused `v_cn` rounded to zero although the exact `v_cn`
+    /// is negative (it lies below the f64 range); only [`crate::exact::scene`]
+    /// decides that.
+    pub(crate) fn approaching_below_range(body: Body, contact: Contact, velocity: PlanarVelocity) -> Self {
+        Self {
+            body,
+            contact,
+            velocity,
+            k2: body.gyration_squared(),
+            contact_velocity: ContactVelocity {
+                normal: contact
+                    .tangential_offset
+                    .mul_add(velocity.angular, velocity.normal),
+                tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
+            },
+        }
+    }
+
     /// The body.
     pub fn body(&self) -> Body {
         self.body

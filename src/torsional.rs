@@ -82,31 +82,66 @@ pub struct TorsionalOutcome {
 }
 
 /// Solves a torsional impact. `energy` chooses whether energies are computed.
-pub fn solve(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
-    let m = positive(Input::Mass, impact.mass)?;
-    let i_n = positive(Input::NormalInertia, impact.normal_inertia)?;
-    let vn = finite(Input::NormalVelocity, impact.normal_velocity)?;
-    let w = finite(Input::Spin, impact.spin)?;
-    let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
-    let ez = in_range(
-        Input::TorsionalRestitution,
-        impact.torsional_restitution,
-        0.0,
-        1.0,
-    )?;
-    let mu_z = in_range(
-        Input::TorsionalFriction,
-        impact.torsional_friction,
-        0.0,
-        f64::INFINITY,
-    )?;
-    let rho = positive(Input::PitchRadius, impact.pitch_radius)?;
-    if vn >= 0.0 {
-        return Err(ImpactError::NotApproaching {
-            input: Input::NormalVelocity,
-            normal_contact_velocity: vn,
-        });
+/// The validated inputs of a torsional impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Validated {
+    pub m: f64,
+    pub i_n: f64,
+    pub vn: f64,
+    pub w: f64,
+    pub e: f64,
+    pub ez: f64,
+    pub mu_z: f64,
+    pub rho: f64,
+}
+
+impl TorsionalImpact {
+    /// Checks every input's range and that the body approaches (`v_n < 0`).
+    pub(crate) fn validate(&self) -> Result<Validated> {
+        let m = positive(Input::Mass, self.mass)?;
+        let i_n = positive(Input::NormalInertia, self.normal_inertia)?;
+        let vn = finite(Input::NormalVelocity, self.normal_velocity)?;
+        let w = finite(Input::Spin, self.spin)?;
+        let e = in_range(Input::Restitution, self.restitution, 0.0, 1.0)?;
+        let ez = in_range(Input::TorsionalRestitution, self.torsional_restitution, 0.0, 1.0)?;
+        let mu_z = in_range(
+            Input::TorsionalFriction,
+            self.torsional_friction,
+            0.0,
+            f64::INFINITY,
+        )?;
+        let rho = positive(Input::PitchRadius, self.pitch_radius)?;
+        if vn >= 0.0 {
+            return Err(ImpactError::NotApproaching {
+                input: Input::NormalVelocity,
+                normal_contact_velocity: vn,
+            });
+        }
+        Ok(Validated {
+            m,
+            i_n,
+            vn,
+            w,
+            e,
+            ez,
+            mu_z,
+            rho,
+        })
     }
+}
+
+/// Solves a torsional impact. `energy` chooses whether energies are computed.
+pub fn solve(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
+    let Validated {
+        m,
+        i_n,
+        vn,
+        w,
+        e,
+        ez,
+        mu_z,
+        rho,
+    } = impact.validate()?;
     let qn = (1.0 + e) * -vn;
     let switch_spin = finite_output(Output::SwitchSpin, mu_z * rho * qn * (m / i_n))?;
     let magnitude = w.abs();

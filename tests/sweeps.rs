@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 
 use common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
+use restitution::Precision;
 use restitution::http::ServiceConfig;
 use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
 use restitution::{Contact, Outputs, PlanarVelocity};
@@ -84,8 +85,13 @@ async fn json_table_is_in_product_order_and_matches_the_library_bit_for_bit() {
         // The first axis varies slowest; linspace(−1, 5, 61) steps by exactly 0.1 (one rounding).
         assert_eq!(f, frictions[i % 3]);
         assert_eq!(vt, ((i / 3) as f64).mul_add(0.1, -1.0));
-        let expected =
-            solve_point(PlanarLaw::TangentialRestitution, &maw_point(vt, f), Outputs::ALL).unwrap();
+        let expected = solve_point(
+            PlanarLaw::TangentialRestitution,
+            &maw_point(vt, f),
+            Outputs::ALL,
+            Precision::Fast,
+        )
+        .unwrap();
         assert_eq!(
             row[2].as_f64().unwrap().to_bits(),
             expected.contact_velocity.r#final.tangential.to_bits()
@@ -176,6 +182,7 @@ async fn zip_pairs_axes_and_refuses_unequal_lengths() {
         PlanarLaw::TangentialRestitution,
         &maw_point(2.0, 0.2),
         Outputs::ALL,
+        Precision::Fast,
     )
     .unwrap();
     assert_eq!(row[3].as_f64().unwrap(), expected.final_velocity.tangential);

@@ -5,9 +5,42 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+use crate::exact::Precision;
 use crate::planar::{PlanarOutcome, Regime};
 use crate::scene::{Contact, ContactVelocity, PlanarVelocity};
 use crate::torsional::{TorsionalOutcome, TorsionalRegime};
+
+/// Arithmetic precision of an answer.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PrecisionDto {
+    /// Plain f64 closed forms with the solver's special paths: fastest; the
+    /// error bound relative to the terms each output combines is in docs/accuracy.md.
+    #[default]
+    Fast,
+    /// Every number is the correctly rounded f64 of the model's exact value for
+    /// the given inputs, and every regime decision is exact (double-double with a
+    /// certified error bound, exact rationals where that cannot decide).
+    Exact,
+}
+
+impl From<PrecisionDto> for Precision {
+    fn from(p: PrecisionDto) -> Self {
+        match p {
+            PrecisionDto::Fast => Precision::Fast,
+            PrecisionDto::Exact => Precision::Exact,
+        }
+    }
+}
+
+impl From<Precision> for PrecisionDto {
+    fn from(p: Precision) -> Self {
+        match p {
+            Precision::Fast => PrecisionDto::Fast,
+            Precision::Exact => PrecisionDto::Exact,
+        }
+    }
+}
 
 /// A rigid body: mass and centroidal moment of inertia.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
@@ -194,11 +227,13 @@ pub struct PlanarResponse {
     pub regime: RegimeDto,
     /// Kinetic energies.
     pub energy: PlanarEnergyOut,
+    /// The precision that produced the answer.
+    pub precision: PrecisionDto,
 }
 
 impl PlanarResponse {
-    /// Maps a solver outcome computed with every output.
-    pub fn from_outcome(o: &PlanarOutcome) -> Self {
+    /// Maps a solver outcome computed with every output in `precision`.
+    pub fn from_outcome(o: &PlanarOutcome, precision: Precision) -> Self {
         let energy = o.energy.unwrap_or(crate::energy::PlanarEnergy {
             initial: 0.0,
             r#final: 0.0,
@@ -232,6 +267,7 @@ impl PlanarResponse {
                 max_loss: energy.max_loss,
                 normalized_loss: energy.normalized_loss,
             },
+            precision: precision.into(),
         }
     }
 }
@@ -289,11 +325,13 @@ pub struct TorsionalResponse {
     pub switch_spin: f64,
     /// Rotational energies about the normal.
     pub energy: RotationalEnergyOut,
+    /// The precision that produced the answer.
+    pub precision: PrecisionDto,
 }
 
 impl TorsionalResponse {
-    /// Maps a solver outcome computed with energies.
-    pub fn from_outcome(o: &TorsionalOutcome) -> Self {
+    /// Maps a solver outcome computed with energies in `precision`.
+    pub fn from_outcome(o: &TorsionalOutcome, precision: Precision) -> Self {
         let energy = o.energy.unwrap_or(crate::torsional::RotationalEnergy {
             initial: 0.0,
             r#final: 0.0,
@@ -318,6 +356,7 @@ impl TorsionalResponse {
                 final_: energy.r#final,
                 loss: energy.loss,
             },
+            precision: precision.into(),
         }
     }
 }

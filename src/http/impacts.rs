@@ -6,14 +6,18 @@ use axum::http::StatusCode;
 use serde::Deserialize;
 use utoipa::{IntoResponses, ToSchema};
 
-use super::dto::{ContactDto, NormalBodyDto, PlanarResponse, RigidBodyDto, TorsionalResponse, VelocityDto};
+use super::dto::{
+    ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, TorsionalResponse, VelocityDto,
+};
 use super::extract::ApiJson;
 use super::problem::{ApiError, Problem};
 use crate::error::{ImpactError, Input};
+use crate::exact::Precision;
 use crate::oblique::KineticRestitution;
 use crate::planar::Outputs;
 use crate::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use crate::torsional::{self, TorsionalImpact};
+use crate::sweep::torsional::solve_torsional;
+use crate::torsional::TorsionalImpact;
 
 /// The error responses every impact endpoint may give (all problem+json).
 #[derive(IntoResponses)]
@@ -83,6 +87,9 @@ pub struct NormalRequest {
     /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
     #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
     pub restitution: f64,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
 }
 
 /// The Appendix's two-phase model: kinetic restitution R with phase impulse ratios.
@@ -128,6 +135,9 @@ pub struct ObliqueRequest {
     pub impulse_ratio: Option<f64>,
     /// The two-phase kinetic model, in place of `restitution` and a tangential law.
     pub kinetic_restitution: Option<KineticRestitutionDto>,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
 }
 
 /// An impact with tangential restitution (the bilinear model of section 3).
@@ -157,6 +167,9 @@ pub struct TangentialRequest {
     /// e_t: tangential coefficient of restitution (Eq 20), in [−1, 1]; −1 means no tangential impulse.
     #[schema(minimum = -1.0, maximum = 1.0, example = 0.34)]
     pub tangential_restitution: f64,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
 }
 
 /// Mass and moment of inertia about the contact normal.
@@ -217,6 +230,9 @@ pub struct TorsionalRequest {
     pub restitution: f64,
     /// Torsional coefficients.
     pub torsion: TorsionDto,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
 }
 
 /// The law and inputs of a normal request.
@@ -336,36 +352,36 @@ pub fn torsional_input(req: &TorsionalRequest) -> TorsionalImpact {
     }
 }
 
-fn solve_planar(input: Result<(PlanarLaw, PlanarPoint), ApiError>) -> Result<PlanarResponse, ApiError> {
+fn solve_planar(
+    input: Result<(PlanarLaw, PlanarPoint), ApiError>,
+    precision: PrecisionDto,
+) -> Result<PlanarResponse, ApiError> {
     let (law, point) = input?;
-    Ok(PlanarResponse::from_outcome(&solve_point(
-        law,
-        &point,
-        Outputs::ALL,
-    )?))
+    let precision = Precision::from(precision);
+    let outcome = solve_point(law, &point, Outputs::ALL, precision)?;
+    Ok(PlanarResponse::from_outcome(&outcome, precision))
 }
 
 /// The response to a normal request.
 pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(normal_input(&req))
+    solve_planar(normal_input(&req), req.precision)
 }
 
 /// The response to an oblique request.
 pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(oblique_input(&req))
+    solve_planar(oblique_input(&req), req.precision)
 }
 
 /// The response to a tangential-restitution request.
 pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(Ok(tangential_input(&req)))
+    solve_planar(Ok(tangential_input(&req)), req.precision)
 }
 
 /// The response to a torsional request.
 pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, ApiError> {
-    Ok(TorsionalResponse::from_outcome(&torsional::solve(
-        &torsional_input(&req),
-        true,
-    )?))
+    let precision = Precision::from(req.precision);
+    let outcome = solve_torsional(&torsional_input(&req), true, precision)?;
+    Ok(TorsionalResponse::from_outcome(&outcome, precision))
 }
 
 /// Normal impact of a point mass or a frictionless rigid body (section 2.1).

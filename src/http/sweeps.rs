@@ -22,6 +22,7 @@ use tokio::sync::mpsc;
 use utoipa::{IntoResponses, ToSchema};
 
 use super::ServiceConfig;
+use super::dto::PrecisionDto;
 use super::extract::{ApiJson, parse_value};
 use super::impacts::{
     NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest, normal_input, oblique_input,
@@ -30,6 +31,7 @@ use super::impacts::{
 use super::problem::{ApiError, Problem, input_pointer};
 use super::svg;
 use crate::error::Input;
+use crate::exact::Precision;
 use crate::sweep::planar::{PLANAR_INPUTS, PlanarColumn, PlanarSweep};
 use crate::sweep::torsional::{TORSIONAL_INPUTS, TorsionalColumn, TorsionalSweep};
 use crate::sweep::{Axis, AxisValues, Cell, Combine, GridError, Row, Sweep, SweepCase};
@@ -99,15 +101,6 @@ pub enum CombineDto {
     Zip,
 }
 
-/// Arithmetic precision of the answers.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum PrecisionDto {
-    /// Plain f64 closed forms with the solver's special paths (error bounds in docs/physics.md).
-    #[default]
-    Fast,
-}
-
 /// Evenly spaced values (linearly, or in logarithm for `logspace`), both ends included.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -166,9 +159,9 @@ pub struct SweepRequest {
     /// JSON pointers into the case's response choosing the columns (a pointer to an
     /// object takes all its members); absent means every output.
     pub outputs: Option<Vec<String>>,
-    /// Arithmetic precision (default `fast`).
-    #[serde(default)]
-    pub precision: PrecisionDto,
+    /// Arithmetic precision: `fast` or `exact`. Absent: the base's `precision`,
+    /// else `fast`; when both are given they must agree.
+    pub precision: Option<PrecisionDto>,
 }
 
 /// A sweep as one JSON table. Columns are the axis paths, the output pointers and
@@ -297,18 +290,33 @@ pub async fn sweeps(
     match request.case {
         CaseDto::Torsional => {
             let base: TorsionalRequest = parse_value(request.base, "/base")?;
+            let precision = precision(request.precision, base.precision)?;
             let params = axis_params(&request.axes, &TORSIONAL_INPUTS, |_| Ok(()))?;
             let columns = output_columns(request.outputs.as_deref(), TORSIONAL_OUTPUTS)?;
-            let case = TorsionalSweep::new(columns.iter().map(|(_, c)| *c).collect());
+            let case =
+                TorsionalSweep::new(columns.iter().map(|(_, c)| *c).collect()).with_precision(precision);
             let sweep = build(case, torsional_input(&base), params, axes, combine, limit, format)?;
-            respond(sweep, names(&columns), format, stall).await
+            respond(sweep, names(&columns), format, precision, stall).await
         }
         planar => {
-            let (law, point) = match planar {
-                CaseDto::Normal => normal_input(&parse_value::<NormalRequest>(request.base, "/base")?)?,
-                CaseDto::Oblique => oblique_input(&parse_value::<ObliqueRequest>(request.base, "/base")?)?,
-                _ => tangential_input(&parse_value::<TangentialRequest>(request.base, "/base")?),
+            let (law, point, base_precision) = match planar {
+                CaseDto::Normal => {
+                    let base = parse_value::<NormalRequest>(request.base, "/base")?;
+                    let (law, point) = normal_input(&base)?;
+                    (law, point, base.precision)
+                }
+                CaseDto::Oblique => {
+                    let base = parse_value::<ObliqueRequest>(request.base, "/base")?;
+                    let (law, point) = oblique_input(&base)?;
+                    (law, point, base.precision)
+                }
+                _ => {
+                    let base = parse_value::<TangentialRequest>(request.base, "/base")?;
+                    let (law, point) = tangential_input(&base);
+                    (law, point, base.precision)
+                }
             };
+            let precision = precision(request.precision, base_precision)?;
             let params = axis_params(&request.axes, &PLANAR_INPUTS, |p| {
                 if law.reads(p) {
                     Ok(())
@@ -320,10 +328,28 @@ pub async fn sweeps(
                 }
             })?;
             let columns = output_columns(request.outputs.as_deref(), PLANAR_OUTPUTS)?;
-            let case = PlanarSweep::new(law, &point, &params, columns.iter().map(|(_, c)| *c).collect());
+            let case = PlanarSweep::new(law, &point, &params, columns.iter().map(|(_, c)| *c).collect())
+                .with_precision(precision);
             let sweep = build(case, point, params, axes, combine, limit, format)?;
-            respond(sweep, names(&columns), format, stall).await
+            respond(sweep, names(&columns), format, precision, stall).await
         }
+    }
+}
+
+/// The sweep's precision: its own, else the base's (which defaults to `fast`).
+/// The base's is `fast` both when absent and when given as `fast`, so only an
+/// explicit disagreement with an `exact` base is refused.
+fn precision(sweep: Option<PrecisionDto>, base: PrecisionDto) -> Result<Precision, ApiError> {
+    match sweep {
+        Some(p) if base == PrecisionDto::Exact && p != base => Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "precision",
+            "Conflicting precision",
+            "the sweep's precision differs from the base's: give it once",
+        )
+        .at("/precision")),
+        Some(p) => Ok(p.into()),
+        None => Ok(base.into()),
     }
 }
 
@@ -612,6 +638,7 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
 #[derive(Clone)]
 struct RowWriter {
     format: Format,
+    precision: Precision,
     /// Axis paths, then output pointers.
     names: Vec<&'static str>,
 }
@@ -746,6 +773,7 @@ async fn respond<C>(
     sweep: Sweep<C>,
     outputs: Vec<&'static str>,
     format: Format,
+    precision: Precision,
     stall: Duration,
 ) -> Result<Response, ApiError>
 where
@@ -755,7 +783,11 @@ where
     let mut names = axis_names.clone();
     names.extend(&outputs);
     let points = sweep.points();
-    let writer = RowWriter { format, names };
+    let writer = RowWriter {
+        format,
+        precision,
+        names,
+    };
     let body = match format {
         Format::Svg => {
             let plot = svg::Plot::check(&axis_names, &outputs, &sweep)?;
@@ -781,6 +813,7 @@ where
         HeaderValue::from_static(format.content_type()),
     );
     headers.insert("x-sweep-points", HeaderValue::from(points));
+    headers.insert("x-precision", HeaderValue::from_static(precision.as_str()));
     Ok(response)
 }
 
@@ -808,8 +841,9 @@ fn table<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter) -> Vec<u8> {
     );
     out.extend_from_slice(
         format!(
-            "],\"points\":{},\"errors\":{errors},\"precision\":\"fast\"}}",
-            sweep.points()
+            "],\"points\":{},\"errors\":{errors},\"precision\":\"{}\"}}",
+            sweep.points(),
+            writer.precision.as_str()
         )
         .as_bytes(),
     );

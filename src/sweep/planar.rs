@@ -2,6 +2,7 @@
 
 use super::{Cell, SweepCase};
 use crate::error::{ImpactError, Input, Result};
+use crate::exact::{self, Precision};
 use crate::normal::{self, NormalImpact};
 use crate::oblique::{self, KineticRestitution, TangentialLaw};
 use crate::planar::{Outputs, PlanarOutcome};
@@ -195,12 +196,14 @@ impl PlanarColumn {
 }
 
 /// A planar case prepared for a sweep: the law, the outputs its columns need,
-/// and the scene when no axis changes it (validated once, not per point).
+/// the precision, and (fast mode) the scene when no axis changes it
+/// (validated once, not per point).
 #[derive(Debug, Clone)]
 pub struct PlanarSweep {
     law: PlanarLaw,
     columns: Vec<PlanarColumn>,
     outputs: Outputs,
+    precision: Precision,
     fixed_scene: Option<Result<PlanarScene>>,
 }
 
@@ -218,8 +221,14 @@ impl PlanarSweep {
             law,
             columns,
             outputs,
+            precision: Precision::Fast,
             fixed_scene,
         }
+    }
+
+    /// The same sweep answered in `precision`.
+    pub fn with_precision(self, precision: Precision) -> Self {
+        PlanarSweep { precision, ..self }
     }
 
     /// The optional outputs the columns need.
@@ -234,16 +243,32 @@ impl PlanarSweep {
 
     /// Solves one point with every output the columns need.
     pub fn solve(&self, p: &PlanarPoint) -> Result<PlanarOutcome> {
+        if self.precision == Precision::Exact {
+            return exact::solve_planar(self.law, p, self.outputs);
+        }
         match &self.fixed_scene {
             Some(Ok(scene)) => solve_in_scene(self.law, scene, p, self.outputs),
             Some(Err(e)) => Err(e.clone()),
-            None => solve_point(self.law, p, self.outputs),
+            None => solve_fast(self.law, p, self.outputs),
         }
     }
 }
 
-/// Solves one planar impact under `law`, computing the optional `outputs`.
-pub fn solve_point(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
+/// Solves one planar impact under `law` in `precision`, computing the optional `outputs`.
+pub fn solve_point(
+    law: PlanarLaw,
+    p: &PlanarPoint,
+    outputs: Outputs,
+    precision: Precision,
+) -> Result<PlanarOutcome> {
+    match precision {
+        Precision::Fast => solve_fast(law, p, outputs),
+        Precision::Exact => exact::solve_planar(law, p, outputs),
+    }
+}
+
+/// Solves one planar impact in plain f64.
+fn solve_fast(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
     if law == PlanarLaw::PointMass {
         let impact = NormalImpact {
             mass: p.mass,

@@ -1,7 +1,8 @@
 //! Sweeps of the torsional case.
 
 use super::{Cell, SweepCase};
-use crate::error::{ImpactError, Input};
+use crate::error::{ImpactError, Input, Result};
+use crate::exact::{self, Precision};
 use crate::torsional::{self, TorsionalImpact, TorsionalOutcome};
 
 /// The inputs of the torsional case an axis can set.
@@ -63,18 +64,40 @@ impl TorsionalColumn {
     }
 }
 
+/// Solves one torsional impact in `precision`; `energy` chooses whether energies are computed.
+pub fn solve_torsional(
+    impact: &TorsionalImpact,
+    energy: bool,
+    precision: Precision,
+) -> Result<TorsionalOutcome> {
+    match precision {
+        Precision::Fast => torsional::solve(impact, energy),
+        Precision::Exact => exact::solve_torsional(impact, energy),
+    }
+}
+
 /// The torsional case prepared for a sweep: energies only when a column needs them.
 #[derive(Debug, Clone)]
 pub struct TorsionalSweep {
     columns: Vec<TorsionalColumn>,
     energy: bool,
+    precision: Precision,
 }
 
 impl TorsionalSweep {
     /// Prepares a sweep computing only what `columns` need.
     pub fn new(columns: Vec<TorsionalColumn>) -> Self {
         let energy = columns.iter().any(|c| c.needs_energy());
-        TorsionalSweep { columns, energy }
+        TorsionalSweep {
+            columns,
+            energy,
+            precision: Precision::Fast,
+        }
+    }
+
+    /// The same sweep answered in `precision`.
+    pub fn with_precision(self, precision: Precision) -> Self {
+        TorsionalSweep { precision, ..self }
     }
 }
 
@@ -102,8 +125,8 @@ impl SweepCase for TorsionalSweep {
         self.columns.len()
     }
 
-    fn evaluate(&self, p: &TorsionalImpact, cells: &mut [Cell]) -> Result<(), ImpactError> {
-        let outcome = torsional::solve(p, self.energy)?;
+    fn evaluate(&self, p: &TorsionalImpact, cells: &mut [Cell]) -> std::result::Result<(), ImpactError> {
+        let outcome = solve_torsional(p, self.energy, self.precision)?;
         let energy = outcome.energy.unwrap_or_default();
         for (cell, column) in cells.iter_mut().zip(&self.columns) {
             *cell = column.cell(&outcome, &energy);

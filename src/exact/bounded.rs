@@ -1,0 +1,275 @@
+//! Double-double numbers carrying a rigorous bound on their distance from
+//! the exact value: the first, fast stage of `precision: "exact"`.
+//!
+//! A [`Bounded`] `(hi, lo, err)` stands for an exact real `x` with
+//! `|x − (hi + lo)| ≤ err`. Sums and products use the error-free transformations
+//! (TwoSum, FMA-based TwoProd) and the double-word algorithms of Joldes, Muller
+//! and Popescu, "Tight and rigorous error bounds for basic building blocks of
+//! double-word arithmetic" (ACM TOMS 2017): `AccurateDWPlusDW` (relative error
+//! ≤ 3u²/(1 − 4u)) and `DWTimesDW3` (≤ 4u²), with `u = 2⁻⁵³`; the bounds used
+//! here are 4u² and 5u². A quotient is bounded a posteriori from its residual,
+//! so no bound of a division algorithm is assumed.
+//!
+//! The bound itself is computed in round-to-nearest; each operation multiplies
+//! it by `1 + 16u`, more than the at most six roundings of its few non-negative
+//! terms can lose. Underflow in a low word costs at most a few units of
+//! 2⁻¹⁰⁷⁴ per operation: products add [`TINY`] = 2⁻¹⁰⁶⁸. Overflow gives an
+//! infinity or NaN somewhere in `(hi, lo, err)`, and then nothing is certified.
+//! Whenever [`Bounded::sign`] or [`Bounded::round`] cannot decide, the caller
+//! falls back to exact rational arithmetic.
+
+use std::cmp::Ordering;
+
+/// Unit roundoff `u = 2⁻⁵³`.
+const U: f64 = f64::EPSILON / 2.0;
+/// `u²`.
+const U2: f64 = U * U;
+/// Growth applied to every computed bound to cover the roundings in computing it.
+const GROW: f64 = 1.0 + 16.0 * U;
+/// Absolute allowance per product for underflow in its low words (2⁻¹⁰⁶⁸).
+const TINY: f64 = f64::from_bits(64);
+/// Below this magnitude a product's rounding error may underflow (2⁻⁹⁶⁹).
+const EXACT_PRODUCT_MIN: f64 = f64::MIN_POSITIVE * (1u64 << 53) as f64;
+
+/// A double-double value with an error bound: the exact value lies in
+/// `[hi + lo − err, hi + lo + err]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Bounded {
+    hi: f64,
+    lo: f64,
+    err: f64,
+}
+
+/// `a + b = s + e` exactly (Knuth's TwoSum).
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// `a + b = s + e` exactly when `|a| ≥ |b|` (Dekker's Fast2Sum).
+#[inline]
+fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// `a · b = p + e` exactly unless `e` underflows (FMA-based TwoProd).
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+impl Bounded {
+    /// An f64, exactly.
+    #[inline]
+    pub(crate) fn exact(x: f64) -> Self {
+        Bounded {
+            hi: x,
+            lo: 0.0,
+            err: 0.0,
+        }
+    }
+
+    /// A value no good for anything: every decision on it is uncertain.
+    const UNKNOWN: Bounded = Bounded {
+        hi: f64::NAN,
+        lo: f64::NAN,
+        err: f64::INFINITY,
+    };
+
+    /// An upper bound of `|hi + lo|` (before the final growth).
+    #[inline]
+    fn magnitude(&self) -> f64 {
+        self.hi.abs() + self.lo.abs()
+    }
+
+    #[inline]
+    fn is_plain(&self) -> bool {
+        self.lo == 0.0 && self.err == 0.0
+    }
+
+    #[inline]
+    fn is_exact_zero(&self) -> bool {
+        self.hi == 0.0 && self.is_plain()
+    }
+
+    /// The value as one f64, for diagnostics only.
+    pub(crate) fn approx(&self) -> f64 {
+        self.hi + self.lo
+    }
+
+    #[inline]
+    pub(crate) fn add(&self, o: &Self) -> Self {
+        if self.is_plain() && o.is_plain() {
+            // TwoSum is exact for any finite operands, subnormal ones included.
+            let (hi, lo) = two_sum(self.hi, o.hi);
+            return Bounded { hi, lo, err: 0.0 };
+        }
+        let (sh, sl) = two_sum(self.hi, o.hi);
+        let (th, tl) = two_sum(self.lo, o.lo);
+        let c = sl + th;
+        let (vh, vl) = fast_two_sum(sh, c);
+        let w = tl + vl;
+        let (hi, lo) = fast_two_sum(vh, w);
+        let err = (self.err + o.err + 4.0 * U2 * (hi.abs() + lo.abs())) * GROW;
+        Bounded { hi, lo, err }
+    }
+
+    #[inline]
+    pub(crate) fn neg(&self) -> Self {
+        Bounded {
+            hi: -self.hi,
+            lo: -self.lo,
+            err: self.err,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn sub(&self, o: &Self) -> Self {
+        self.add(&o.neg())
+    }
+
+    #[inline]
+    pub(crate) fn mul(&self, o: &Self) -> Self {
+        if self.is_exact_zero() || o.is_exact_zero() {
+            return Bounded::exact(0.0);
+        }
+        if self.is_plain() && o.is_plain() {
+            let (hi, lo) = two_prod(self.hi, o.hi);
+            let err = if hi.abs() >= EXACT_PRODUCT_MIN { 0.0 } else { TINY };
+            return Bounded { hi, lo, err };
+        }
+        let (ch, cl1) = two_prod(self.hi, o.hi);
+        let tl0 = self.lo * o.lo;
+        let tl1 = self.hi.mul_add(o.lo, tl0);
+        let cl2 = self.lo.mul_add(o.hi, tl1);
+        let (hi, lo) = fast_two_sum(ch, cl1 + cl2);
+        let propagated = self.magnitude() * o.err + o.magnitude() * self.err + self.err * o.err;
+        let err = (propagated + 5.0 * U2 * (hi.abs() + lo.abs()) + TINY) * GROW;
+        Bounded { hi, lo, err }
+    }
+
+    /// The quotient, with its bound found from the residual: for `q = q_h + q_l`
+    /// and exact `X = x ± e_x`, `Y = y ± e_y`,
+    /// `|X/Y − q| ≤ (|x − q y| + e_x + |q| e_y) / (|y| − e_y)`, and `x − q y` is
+    /// itself computed as a [`Bounded`].
+    pub(crate) fn div(&self, o: &Self) -> Self {
+        let y_low = (o.hi.abs() - o.lo.abs()) * (1.0 - 4.0 * U) - o.err;
+        if !(y_low > 0.0) || !o.hi.is_finite() {
+            return Bounded::UNKNOWN;
+        }
+        if self.is_exact_zero() {
+            return Bounded::exact(0.0);
+        }
+        let x = Bounded { err: 0.0, ..*self };
+        let y = Bounded { err: 0.0, ..*o };
+        let q1 = self.hi / o.hi;
+        let r1 = x.sub(&y.mul(&Bounded::exact(q1)));
+        let q2 = r1.hi / o.hi;
+        let (hi, lo) = two_sum(q1, q2);
+        let q = Bounded { hi, lo, err: 0.0 };
+        let residual = x.sub(&y.mul(&q));
+        let numerator = residual.magnitude() + residual.err + self.err + q.magnitude() * o.err;
+        let err = numerator * GROW / y_low;
+        Bounded { hi, lo, err }
+    }
+
+    fn is_finite(&self) -> bool {
+        self.hi.is_finite() && self.lo.is_finite() && self.err.is_finite()
+    }
+
+    /// The exact value's sign, or `None` when the bound cannot decide it.
+    #[inline]
+    pub(crate) fn sign(&self) -> Option<Ordering> {
+        if !self.is_finite() {
+            return None;
+        }
+        let (hi, lo) = two_sum(self.hi, self.lo);
+        if hi == 0.0 {
+            return (self.err == 0.0).then_some(Ordering::Equal);
+        }
+        let lower = (hi.abs() - lo.abs()) * (1.0 - 4.0 * U);
+        (lower > self.err).then(|| {
+            if hi > 0.0 {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            }
+        })
+    }
+
+    /// The exact value rounded to the nearest f64, or `None` when the bound
+    /// does not fit inside one rounding interval. An exact zero is `+0.0`.
+    #[inline]
+    pub(crate) fn round(&self) -> Option<f64> {
+        if !self.is_finite() {
+            return None;
+        }
+        let (hi, lo) = two_sum(self.hi, self.lo);
+        if self.err == 0.0 {
+            // hi + lo is the exact value and TwoSum rounded it to nearest-even.
+            return Some(if hi == 0.0 { 0.0 } else { hi });
+        }
+        if hi == 0.0 {
+            return None;
+        }
+        // Distances to the neighbours; the smaller one bounds both half-intervals.
+        let gap = (hi.next_up() - hi).min(hi - hi.next_down());
+        let slack = (lo.abs() + self.err) * GROW;
+        (2.0 * slack < gap).then_some(hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sums_and_products_of_doubles_are_exact() {
+        let a = Bounded::exact(0.1);
+        let b = Bounded::exact(0.2);
+        let s = a.add(&b);
+        assert_eq!(s.err, 0.0);
+        assert_eq!(s.round(), Some(0.30000000000000004));
+        assert_eq!(s.sub(&s).sign(), Some(Ordering::Equal));
+        let p = a.mul(&b);
+        assert_eq!(p.err, 0.0);
+        assert_eq!(p.round(), Some(0.1 * 0.2));
+    }
+
+    #[test]
+    fn a_third_rounds_correctly_and_cancellation_is_decided() {
+        let third = Bounded::exact(1.0).div(&Bounded::exact(3.0));
+        assert_eq!(third.round(), Some(1.0 / 3.0));
+        let back = third.mul(&Bounded::exact(3.0)).sub(&Bounded::exact(1.0));
+        // |3 · (1/3) − 1| is within the bound but its sign is not known.
+        assert_eq!(back.sign(), None);
+        assert!(back.err < 1e-30);
+    }
+
+    #[test]
+    fn division_by_an_interval_around_zero_decides_nothing() {
+        let tiny = Bounded::exact(1e-20).mul(&Bounded::exact(1.0).div(&Bounded::exact(3.0)));
+        let almost_zero = tiny.sub(&tiny);
+        let q = Bounded::exact(1.0).div(&almost_zero);
+        assert_eq!(q.sign(), None);
+        assert_eq!(q.round(), None);
+    }
+
+    #[test]
+    fn overflow_and_underflow_are_never_certified_wrongly() {
+        let big = Bounded::exact(1e300);
+        assert_eq!(big.mul(&big).round(), None);
+        let small = Bounded::exact(1e-300);
+        let p = small.mul(&small);
+        assert_eq!(
+            p.round(),
+            None,
+            "the product underflows: only a rational can round it"
+        );
+        assert_eq!(p.sign(), None);
+    }
+}

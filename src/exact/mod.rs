@@ -1,0 +1,213 @@
+//! `precision: "exact"`: every numeric output is the correctly rounded f64 of
+//! the model's exact value for the given f64 inputs, and every regime decision
+//! and refusal is the exact one.
+//!
+//! Adaptive precision in the manner of Shewchuk's robust predicates: the model
+//! ([`model`]) is written once over a [`field::Field`] and evaluated first in
+//! [`bounded::Bounded`] double-double arithmetic with a rigorous error bound.
+//! When every sign the model decides and every output it rounds is certified by
+//! that bound, the answer stands; otherwise (near-ties, results that cancel to
+//! zero, exponents outside the double-double range) the whole answer is
+//! evaluated again in exact rational arithmetic, which always decides.
+//!
+//! An output whose exact value is zero is `+0.0` in this mode. Inputs are
+//! validated as in the fast mode, except that whether the contact approaches
+//! is decided on the exact `v_cn = v_n + d_c ω`, even below the f64 range.
+
+mod bounded;
+mod field;
+mod model;
+
+use num_rational::BigRational;
+
+use self::bounded::Bounded;
+use self::field::Field;
+use self::model::{Exact, Fail, PlanarLaw as Law};
+use crate::error::{ImpactError, Input, Result, finite, in_range};
+use crate::normal::{NormalImpact, PointMass};
+use crate::planar::{Outputs, PlanarOutcome, Regime};
+use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
+use crate::sweep::planar::{PlanarLaw, PlanarPoint};
+use crate::torsional::{TorsionalImpact, TorsionalOutcome};
+
+/// Which arithmetic answers a request.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Precision {
+    /// Plain f64 closed forms with special paths: fastest, error bounded
+    /// relative to the terms each output combines (`docs/accuracy.md`).
+    #[default]
+    Fast,
+    /// Correctly rounded outputs and exact decisions (this module).
+    Exact,
+}
+
+impl Precision {
+    /// The mode's name as the API spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Precision::Fast => "fast",
+            Precision::Exact => "exact",
+        }
+    }
+}
+
+/// Which arithmetic produced an exact answer (or refusal).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Double-double with a certified error bound.
+    DoubleDouble,
+    /// Exact rationals, after the double-double stage could not decide.
+    Rational,
+}
+
+/// Runs `model` in double-double and, if that cannot decide, in rationals.
+fn adaptive<T>(model: impl Fn(bool) -> Exact<T>) -> (Result<T>, Stage) {
+    match model(false) {
+        Ok(v) => (Ok(v), Stage::DoubleDouble),
+        Err(Fail::Refused(e)) => (Err(e), Stage::DoubleDouble),
+        Err(Fail::Undecided) => match model(true) {
+            Ok(v) => (Ok(v), Stage::Rational),
+            Err(Fail::Refused(e)) => (Err(e), Stage::Rational),
+            // Rationals decide every sign and rounding; this arm cannot be reached.
+            Err(Fail::Undecided) => (
+                Err(ImpactError::OutputNotFinite {
+                    output: crate::error::Output::FinalNormalVelocity,
+                }),
+                Stage::Rational,
+            ),
+        },
+    }
+}
+
+/// Builds a planar scene like [`PlanarScene::new`], deciding whether the
+/// contact approaches on the exact `v_cn` (the fused `v_cn` keeps the exact
+/// sign except when it underflows to zero).
+pub fn scene(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<PlanarScene> {
+    match PlanarScene::new(body, contact, velocity) {
+        Err(ImpactError::NotApproaching {
+            normal_contact_velocity,
+            ..
+        }) if normal_contact_velocity == 0.0 => {
+            let exact = <BigRational as Field>::of(velocity.normal).add(
+                &<BigRational as Field>::of(contact.tangential_offset)
+                    .mul(&<BigRational as Field>::of(velocity.angular)),
+            );
+            if exact.sign() == Some(std::cmp::Ordering::Less) {
+                Ok(PlanarScene::approaching_below_range(body, contact, velocity))
+            } else {
+                Err(ImpactError::NotApproaching {
+                    input: Input::NormalVelocity,
+                    normal_contact_velocity: 0.0,
+                })
+            }
+        }
+        other => other,
+    }
+}
+
+/// The law and its validated coefficients, checked in the fast mode's order.
+fn planar_law(law: PlanarLaw, p: &PlanarPoint) -> Result<(f64, Law)> {
+    let e = || in_range(Input::Restitution, p.restitution, 0.0, 1.0);
+    Ok(match law {
+        PlanarLaw::PointMass | PlanarLaw::Frictionless => (e()?, Law::Frictionless),
+        PlanarLaw::ImpulseRatio => (e()?, Law::Ratio(finite(Input::ImpulseRatio, p.impulse_ratio)?)),
+        PlanarLaw::Friction => {
+            let e = e()?;
+            let f = in_range(Input::Friction, p.friction, 0.0, f64::INFINITY)?;
+            (
+                e,
+                Law::Bilinear {
+                    f,
+                    et: 0.0,
+                    capped: Regime::Sticking,
+                },
+            )
+        }
+        PlanarLaw::TangentialRestitution => {
+            let e = e()?;
+            let f = in_range(Input::Friction, p.friction, 0.0, f64::INFINITY)?;
+            let et = in_range(Input::TangentialRestitution, p.tangential_restitution, -1.0, 1.0)?;
+            (
+                e,
+                Law::Bilinear {
+                    f,
+                    et,
+                    capped: Regime::Restitution,
+                },
+            )
+        }
+        PlanarLaw::KineticRestitution => {
+            let r = in_range(Input::KineticRestitution, p.kinetic.value, 0.0, 1.0)?;
+            let mu_a = finite(Input::ApproachImpulseRatio, p.kinetic.approach_impulse_ratio)?;
+            let mu_r = finite(Input::ReboundImpulseRatio, p.kinetic.rebound_impulse_ratio)?;
+            (r, Law::Kinetic { r, mu_a, mu_r })
+        }
+    })
+}
+
+/// Solves one planar impact exactly, reporting which stage answered.
+pub fn solve_planar_staged(
+    law: PlanarLaw,
+    p: &PlanarPoint,
+    outputs: Outputs,
+) -> (Result<PlanarOutcome>, Stage) {
+    if law == PlanarLaw::PointMass {
+        let impact = NormalImpact {
+            mass: p.mass,
+            inertia: None,
+            contact: None,
+            velocity: p.velocity,
+            restitution: p.restitution,
+        };
+        let v = match PointMass::validate(&impact) {
+            Ok(v) => v,
+            Err(e) => return (Err(e), Stage::DoubleDouble),
+        };
+        return adaptive(|rational| {
+            if rational {
+                model::point_mass::<BigRational>(v.mass, v.vn, v.vt, v.e, outputs)
+            } else {
+                model::point_mass::<Bounded>(v.mass, v.vn, v.vt, v.e, outputs)
+            }
+        });
+    }
+    let prepared = Body::new(p.mass, p.inertia)
+        .and_then(|body| scene(body, p.contact, p.velocity))
+        .and_then(|scene| Ok((scene, planar_law(law, p)?)));
+    let (scene, (e, law)) = match prepared {
+        Ok(v) => v,
+        Err(e) => return (Err(e), Stage::DoubleDouble),
+    };
+    adaptive(|rational| {
+        if rational {
+            model::planar::<BigRational>(&scene, e, law, outputs)
+        } else {
+            model::planar::<Bounded>(&scene, e, law, outputs)
+        }
+    })
+}
+
+/// Solves one planar impact exactly.
+pub fn solve_planar(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
+    solve_planar_staged(law, p, outputs).0
+}
+
+/// Solves one torsional impact exactly, reporting which stage answered.
+pub fn solve_torsional_staged(impact: &TorsionalImpact, energy: bool) -> (Result<TorsionalOutcome>, Stage) {
+    let v = match impact.validate() {
+        Ok(v) => v,
+        Err(e) => return (Err(e), Stage::DoubleDouble),
+    };
+    adaptive(|rational| {
+        if rational {
+            model::torsional::<BigRational>(&v, energy)
+        } else {
+            model::torsional::<Bounded>(&v, energy)
+        }
+    })
+}
+
+/// Solves one torsional impact exactly.
+pub fn solve_torsional(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
+    solve_torsional_staged(impact, energy).0
+}
