@@ -158,7 +158,7 @@ impl Bounded {
     /// itself computed as a [`Bounded`].
     pub(crate) fn div(&self, o: &Self) -> Self {
         let y_low = (o.hi.abs() - o.lo.abs()) * (1.0 - 4.0 * U) - o.err;
-        if !(y_low > 0.0) || !o.hi.is_finite() {
+        if y_low.is_nan() || y_low <= 0.0 || !o.hi.is_finite() {
             return Bounded::UNKNOWN;
         }
         if self.is_exact_zero() {
@@ -192,13 +192,7 @@ impl Bounded {
             return (self.err == 0.0).then_some(Ordering::Equal);
         }
         let lower = (hi.abs() - lo.abs()) * (1.0 - 4.0 * U);
-        (lower > self.err).then(|| {
-            if hi > 0.0 {
-                Ordering::Greater
-            } else {
-                Ordering::Less
-            }
-        })
+        (lower > self.err).then_some(if hi > 0.0 { Ordering::Greater } else { Ordering::Less })
     }
 
     /// The exact value rounded to the nearest f64, or `None` when the bound

@@ -85,9 +85,9 @@ fn adaptive<T>(model: impl Fn(bool) -> Exact<T>) -> (Result<T>, Stage) {
 pub fn scene(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<PlanarScene> {
     match PlanarScene::new(body, contact, velocity) {
         Err(ImpactError::NotApproaching {
-            normal_contact_velocity,
+            normal_contact_velocity: 0.0,
             ..
-        }) if normal_contact_velocity == 0.0 => {
+        }) => {
             let exact = <BigRational as Field>::of(velocity.normal).add(
                 &<BigRational as Field>::of(contact.tangential_offset)
                     .mul(&<BigRational as Field>::of(velocity.angular)),
