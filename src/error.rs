@@ -112,6 +112,10 @@ pub enum Output {
     FinalTangentialVelocity,
     /// Final angular velocity `Ω`.
     FinalAngularVelocity,
+    /// Initial normal contact-point velocity `v_cn`.
+    InitialNormalContactVelocity,
+    /// Initial tangential contact-point velocity `v_ct`.
+    InitialTangentialContactVelocity,
     /// Final normal contact-point velocity `V_cn`.
     FinalNormalContactVelocity,
     /// Final tangential contact-point velocity `V_ct`.
@@ -151,6 +155,8 @@ impl Output {
             Output::FinalNormalVelocity => "V_n",
             Output::FinalTangentialVelocity => "V_t",
             Output::FinalAngularVelocity => "Ω",
+            Output::InitialNormalContactVelocity => "v_cn",
+            Output::InitialTangentialContactVelocity => "v_ct",
             Output::FinalNormalContactVelocity => "V_cn",
             Output::FinalTangentialContactVelocity => "V_ct",
             Output::NormalImpulse => "P_n",

@@ -6,7 +6,7 @@
 //! `ω` is positive in the sense that turns `n` toward `t`. Then the contact
 //! point moves with `v_cn = v_n + d_c ω` and `v_ct = v_t − d_d ω`.
 
-use crate::error::{ImpactError, Input, Result, finite, positive};
+use crate::error::{ImpactError, Input, Output, Result, finite, finite_output, positive};
 
 /// A rigid lamina: mass `m` and centroidal moment of inertia `I = m k²`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,17 +110,18 @@ impl PlanarScene {
                 .mul_add(velocity.angular, velocity.normal),
             tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
         };
-        if !contact_velocity.normal.is_finite() || !contact_velocity.tangential.is_finite() {
-            return Err(ImpactError::NotFinite {
-                input: Input::AngularVelocity,
-            });
-        }
+        // A v_cn beyond the f64 range still has its sign: separating is decided first.
         if contact_velocity.normal >= 0.0 {
             return Err(ImpactError::NotApproaching {
                 input: Input::NormalVelocity,
                 normal_contact_velocity: contact_velocity.normal,
             });
         }
+        finite_output(Output::InitialNormalContactVelocity, contact_velocity.normal)?;
+        finite_output(
+            Output::InitialTangentialContactVelocity,
+            contact_velocity.tangential,
+        )?;
         Ok(Self {
             body,
             contact,

@@ -12,8 +12,9 @@
 //!
 //! The bound itself is computed in round-to-nearest; each operation multiplies
 //! it by `1 + 16u`, more than the at most six roundings of its few non-negative
-//! terms can lose. Underflow in a low word costs at most a few units of
-//! 2⁻¹⁰⁷⁴ per operation: products add [`TINY`] = 2⁻¹⁰⁶⁸. Overflow gives an
+//! terms can lose. Underflow in a low word (or in the bound itself) costs at
+//! most a few units of 2⁻¹⁰⁷⁴ per operation: every inexact operation adds
+//! [`TINY`] = 2⁻¹⁰⁶⁸, so a bound never underflows to a false zero. Overflow gives an
 //! infinity or NaN somewhere in `(hi, lo, err)`, and then nothing is certified.
 //! Whenever [`Bounded::sign`] or [`Bounded::round`] cannot decide, the caller
 //! falls back to exact rational arithmetic.
@@ -114,7 +115,8 @@ impl Bounded {
         let (vh, vl) = fast_two_sum(sh, c);
         let w = tl + vl;
         let (hi, lo) = fast_two_sum(vh, w);
-        let err = (self.err + o.err + 4.0 * U2 * (hi.abs() + lo.abs())) * GROW;
+        // TINY covers the low words' roundings where they fall below the normal range.
+        let err = (self.err + o.err + 4.0 * U2 * (hi.abs() + lo.abs())) * GROW + TINY;
         Bounded { hi, lo, err }
     }
 
@@ -173,7 +175,8 @@ impl Bounded {
         let q = Bounded { hi, lo, err: 0.0 };
         let residual = x.sub(&y.mul(&q));
         let numerator = residual.magnitude() + residual.err + self.err + q.magnitude() * o.err;
-        let err = numerator * GROW / y_low;
+        // The quotient of the bounds may underflow: TINY keeps the bound above it.
+        let err = numerator * GROW / y_low + TINY;
         Bounded { hi, lo, err }
     }
 
@@ -192,7 +195,11 @@ impl Bounded {
             return (self.err == 0.0).then_some(Ordering::Equal);
         }
         let lower = (hi.abs() - lo.abs()) * (1.0 - 4.0 * U);
-        (lower > self.err).then_some(if hi > 0.0 { Ordering::Greater } else { Ordering::Less })
+        (lower > self.err).then_some(if hi > 0.0 {
+            Ordering::Greater
+        } else {
+            Ordering::Less
+        })
     }
 
     /// The exact value rounded to the nearest f64, or `None` when the bound
@@ -228,7 +235,9 @@ mod tests {
         let s = a.add(&b);
         assert_eq!(s.err, 0.0);
         assert_eq!(s.round(), Some(0.30000000000000004));
-        assert_eq!(s.sub(&s).sign(), Some(Ordering::Equal));
+        // An exact cancellation of double-double values is left to the rationals.
+        assert_eq!(s.sub(&s).sign(), None);
+        assert_eq!(a.sub(&a).sign(), Some(Ordering::Equal));
         let p = a.mul(&b);
         assert_eq!(p.err, 0.0);
         assert_eq!(p.round(), Some(0.1 * 0.2));
@@ -249,6 +258,13 @@ mod tests {
         let tiny = Bounded::exact(1e-20).mul(&Bounded::exact(1.0).div(&Bounded::exact(3.0)));
         let almost_zero = tiny.sub(&tiny);
         let q = Bounded::exact(1.0).div(&almost_zero);
+        assert_eq!(q.sign(), None);
+        assert_eq!(q.round(), None);
+    }
+
+    #[test]
+    fn a_quotient_below_the_range_is_never_called_zero() {
+        let q = Bounded::exact(2.47e-220).div(&Bounded::exact(2.75e206));
         assert_eq!(q.sign(), None);
         assert_eq!(q.round(), None);
     }

@@ -335,12 +335,12 @@ impl<'a, N: Field> Scene<'a, N> {
         // hide a value below the f64 range (or carry the sign of a −0 input).
         let initial = ContactVelocity {
             normal: if fused.normal == 0.0 {
-                out(Output::FinalNormalContactVelocity, &self.vcn)?
+                out(Output::InitialNormalContactVelocity, &self.vcn)?
             } else {
                 fused.normal
             },
             tangential: if fused.tangential == 0.0 {
-                out(Output::FinalTangentialContactVelocity, &self.vct)?
+                out(Output::InitialTangentialContactVelocity, &self.vct)?
             } else {
                 fused.tangential
             },

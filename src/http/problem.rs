@@ -164,6 +164,8 @@ pub fn output_pointer(output: Output) -> &'static str {
         Output::FinalNormalVelocity => "/final_velocity/normal",
         Output::FinalTangentialVelocity => "/final_velocity/tangential",
         Output::FinalAngularVelocity => "/final_velocity/angular",
+        Output::InitialNormalContactVelocity => "/contact_velocity/initial/normal",
+        Output::InitialTangentialContactVelocity => "/contact_velocity/initial/tangential",
         Output::FinalNormalContactVelocity => "/contact_velocity/final/normal",
         Output::FinalTangentialContactVelocity => "/contact_velocity/final/tangential",
         Output::NormalImpulse => "/impulse/normal",

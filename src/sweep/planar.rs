@@ -247,7 +247,9 @@ impl PlanarSweep {
             return exact::solve_planar(self.law, p, self.outputs);
         }
         match &self.fixed_scene {
-            Some(Ok(scene)) => solve_in_scene(self.law, scene, p, self.outputs),
+            Some(Ok(scene)) => escalate(self.law, p, self.outputs, || {
+                solve_in_scene(self.law, scene, p, self.outputs)
+            }),
             Some(Err(e)) => Err(e.clone()),
             None => solve_fast(self.law, p, self.outputs),
         }
@@ -267,8 +269,68 @@ pub fn solve_point(
     }
 }
 
-/// Solves one planar impact in plain f64.
+/// The largest and smallest magnitudes (2^±200) the fast closed forms take:
+/// products of up to five such inputs stay normal doubles, so no intermediate
+/// overflows or loses bits to underflow.
+const FAST_RANGE: (f64, f64) = (
+    1.0 / (1u128 << 100) as f64 / (1u128 << 100) as f64,
+    (1u128 << 100) as f64 * (1u128 << 100) as f64,
+);
+
+/// Whether the fast closed forms take `x` (zero, or a magnitude in [`FAST_RANGE`]).
+pub(crate) fn in_fast_range(x: f64) -> bool {
+    x == 0.0 || (FAST_RANGE.0..=FAST_RANGE.1).contains(&x.abs())
+}
+
+/// The value of one planar input of a point.
+fn get(p: &PlanarPoint, input: Input) -> f64 {
+    match input {
+        Input::Mass => p.mass,
+        Input::Inertia => p.inertia,
+        Input::TangentialOffset => p.contact.tangential_offset,
+        Input::NormalOffset => p.contact.normal_offset,
+        Input::NormalVelocity => p.velocity.normal,
+        Input::TangentialVelocity => p.velocity.tangential,
+        Input::AngularVelocity => p.velocity.angular,
+        Input::Restitution => p.restitution,
+        Input::Friction => p.friction,
+        Input::ImpulseRatio => p.impulse_ratio,
+        Input::TangentialRestitution => p.tangential_restitution,
+        Input::KineticRestitution => p.kinetic.value,
+        Input::ApproachImpulseRatio => p.kinetic.approach_impulse_ratio,
+        Input::ReboundImpulseRatio => p.kinetic.rebound_impulse_ratio,
+        _ => 0.0,
+    }
+}
+
+/// The fast mode's answer: the closed forms when every input the law reads is
+/// in [`FAST_RANGE`]; otherwise, and to confirm an output that overflows, the
+/// exact evaluator, which neither overflows nor underflows in between.
+fn escalate(
+    law: PlanarLaw,
+    p: &PlanarPoint,
+    outputs: Outputs,
+    closed_forms: impl FnOnce() -> Result<PlanarOutcome>,
+) -> Result<PlanarOutcome> {
+    let in_range = PLANAR_INPUTS
+        .iter()
+        .all(|&input| !law.reads(input) || in_fast_range(get(p, input)));
+    if !in_range {
+        return exact::solve_planar(law, p, outputs);
+    }
+    match closed_forms() {
+        Err(ImpactError::OutputNotFinite { .. }) => exact::solve_planar(law, p, outputs),
+        answer => answer,
+    }
+}
+
+/// Solves one planar impact in the fast mode.
 fn solve_fast(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
+    escalate(law, p, outputs, || closed_forms(law, p, outputs))
+}
+
+/// Solves one planar impact by the f64 closed forms.
+fn closed_forms(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
     if law == PlanarLaw::PointMass {
         let impact = NormalImpact {
             mass: p.mass,

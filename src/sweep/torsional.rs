@@ -3,6 +3,7 @@
 use super::{Cell, SweepCase};
 use crate::error::{ImpactError, Input, Result};
 use crate::exact::{self, Precision};
+use crate::sweep::planar::in_fast_range;
 use crate::torsional::{self, TorsionalImpact, TorsionalOutcome};
 
 /// The inputs of the torsional case an axis can set.
@@ -70,9 +71,25 @@ pub fn solve_torsional(
     energy: bool,
     precision: Precision,
 ) -> Result<TorsionalOutcome> {
+    let in_range = [
+        impact.mass,
+        impact.normal_inertia,
+        impact.normal_velocity,
+        impact.spin,
+        impact.restitution,
+        impact.torsional_restitution,
+        impact.torsional_friction,
+        impact.pitch_radius,
+    ]
+    .into_iter()
+    .all(in_fast_range);
     match precision {
-        Precision::Fast => torsional::solve(impact, energy),
-        Precision::Exact => exact::solve_torsional(impact, energy),
+        // As for the planar cases: extreme inputs and overflowing outputs go to the exact evaluator.
+        Precision::Fast if in_range => match torsional::solve(impact, energy) {
+            Err(ImpactError::OutputNotFinite { .. }) => exact::solve_torsional(impact, energy),
+            answer => answer,
+        },
+        _ => exact::solve_torsional(impact, energy),
     }
 }
 

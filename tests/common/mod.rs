@@ -1,6 +1,7 @@
 //! Shared helpers of the integration tests.
 #![allow(dead_code)]
 
+pub mod accuracy;
 pub mod reference;
 pub mod server;
 
