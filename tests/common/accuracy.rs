@@ -5,7 +5,7 @@
 
 use super::Rng;
 use super::reference::{self as exact, Outcome, Q, Refusal, q, ulps};
-use num_traits::{Signed, ToPrimitive};
+use num_traits::Signed;
 use restitution::{Body, Contact, ImpactError, PlanarOutcome, PlanarScene, PlanarVelocity};
 
 /// The largest error allowed, in ulps of the scale defined above. Each output
