@@ -451,3 +451,104 @@ fn committed_openapi_document_is_up_to_date() {
         "openapi/openapi.json is stale: run `cargo run -- openapi > openapi/openapi.json`"
     );
 }
+
+/// `precision` on every impact endpoint and on sweeps: echoed, and `exact`
+/// answers are the library's exact answers bit for bit (on an input where the
+/// fast answer differs in the last place).
+#[tokio::test]
+async fn precision_is_chosen_echoed_and_exact_over_http() {
+    use restitution::Precision;
+    use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
+    let app = spawn_app(ServiceConfig::default()).await;
+    let point = |vt: f64| PlanarPoint {
+        mass: 1.0,
+        inertia: 0.5 * 0.05 * 0.05,
+        contact: Contact::central(0.05),
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: vt,
+            angular: 0.0,
+        },
+        restitution: 0.93,
+        friction: 0.123,
+        ..PlanarPoint::default()
+    };
+    let solve =
+        |vt: f64, p: Precision| solve_point(PlanarLaw::Friction, &point(vt), Outputs::ALL, p).unwrap();
+    let vt = (1..200)
+        .map(|i| 0.37 * f64::from(i))
+        .find(|&vt| {
+            let (f, x) = (solve(vt, Precision::Fast), solve(vt, Precision::Exact));
+            f.energy != x.energy || f.impulse != x.impulse
+        })
+        .expect("an input where fast and exact differ");
+    for (name, precision) in [("fast", Precision::Fast), ("exact", Precision::Exact)] {
+        let mut request = maw_disc(vt);
+        request["precision"] = json!(name);
+        let (status, _, body) = app.post("/v1/impacts/oblique", &request).await;
+        assert_eq!(status, StatusCode::OK, "{body}");
+        assert_eq!(body["precision"], name);
+        let expected = solve(vt, precision).final_velocity.angular;
+        assert_eq!(
+            body["final_velocity"]["angular"].as_f64().unwrap().to_bits(),
+            expected.to_bits()
+        );
+    }
+    // The default is fast, and every endpoint takes and echoes the field.
+    let (_, _, body) = app.post("/v1/impacts/oblique", &maw_disc(vt)).await;
+    assert_eq!(body["precision"], "fast");
+    let normal = json!({"body": {"mass": 2.0}, "velocity": {"normal": -3.0, "tangential": 1.0, "angular": 0.0},
+                        "restitution": 0.5, "precision": "exact"});
+    let tangential = json!({"body": {"mass": 1.0, "inertia": 0.00125}, "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+                            "velocity": {"normal": -1.0, "tangential": 0.4, "angular": 0.0},
+                            "restitution": 0.93, "friction": 0.123, "tangential_restitution": 0.34, "precision": "exact"});
+    let torsional = json!({"body": {"mass": 0.6, "normal_inertia": 0.003456}, "velocity": {"normal": -3.0, "spin": 20.0},
+                           "restitution": 0.7, "torsion": {"restitution": 0.2, "friction": 0.3, "pitch_radius": 0.01},
+                           "precision": "exact"});
+    for (path, body) in [
+        ("/v1/impacts/normal", normal),
+        ("/v1/impacts/tangential", tangential),
+        ("/v1/impacts/torsional", torsional),
+    ] {
+        let (status, _, answer) = app.post(path, &body).await;
+        assert_eq!(status, StatusCode::OK, "{path}: {answer}");
+        assert_eq!(answer["precision"], "exact", "{path}");
+    }
+    let mut bad = maw_disc(vt);
+    bad["precision"] = json!("double-double");
+    let (status, headers, body) = app.post("/v1/impacts/oblique", &bad).await;
+    assert_problem(
+        status,
+        headers["content-type"].to_str().unwrap(),
+        &body,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        Some("/precision"),
+    );
+    // Sweeps: the mode applies to every point, is echoed in the table and a header.
+    let sweep = json!({"case": "oblique", "base": maw_disc(vt), "precision": "exact",
+                       "axes": [{"path": "/velocity/tangential", "values": [vt]}],
+                       "outputs": ["/final_velocity/angular"]});
+    let response = app
+        .client
+        .post(format!("{}/v1/sweeps", app.base))
+        .json(&sweep)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(response.headers()["x-precision"], "exact");
+    let table: Value = response.json().await.unwrap();
+    assert_eq!(table["precision"], "exact");
+    let exact = solve(vt, Precision::Exact).final_velocity.angular;
+    assert_eq!(table["rows"][0][1].as_f64().unwrap().to_bits(), exact.to_bits());
+    let mut conflict = sweep.clone();
+    conflict["precision"] = json!("fast");
+    conflict["base"]["precision"] = json!("exact");
+    let (status, headers, body) = app.post("/v1/sweeps", &conflict).await;
+    assert_problem(
+        status,
+        headers["content-type"].to_str().unwrap(),
+        &body,
+        StatusCode::UNPROCESSABLE_ENTITY,
+        Some("/precision"),
+    );
+}

@@ -321,9 +321,13 @@ fn check(name: &str, case: &Case, boundary: bool, tally: &mut Tally, errors: &mu
             assert!(overflows(&value), "{name}: fast refused {output:?} for {case:?}");
         }
         (Err(e), Err(r)) if refusal_kind(e).as_ref() == Some(r) => {}
+        (Ok(o), Err(Refusal::NoImpulseSolution)) => {
+            panic!("{name}: fast answered {o:?} where D ≤ 0 for {case:?}")
+        }
         (Err(ImpactError::OutputNotFinite { output }), Err(_)) if initial_overflow(&case.inp, *output) => {}
         (f, r) if boundary => {
             tally.fast_flips += 1;
+            println!("{name}: fast {f:?} vs reference {r:?}");
             assert!(
                 f.as_ref().map_or(true, |o| o.final_velocity.normal.is_finite()),
                 "{name}: fast {f:?} vs {r:?}"

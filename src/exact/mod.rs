@@ -211,3 +211,30 @@ pub fn solve_torsional_staged(impact: &TorsionalImpact, energy: bool) -> (Result
 pub fn solve_torsional(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
     solve_torsional_staged(impact, energy).0
 }
+
+/// Solves one planar impact in exact rationals only (no double-double stage):
+/// the pure rational evaluation, for comparisons and benchmarks.
+pub fn solve_planar_rational(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
+    if law == PlanarLaw::PointMass {
+        return solve_planar(law, p, outputs);
+    }
+    let body = Body::new(p.mass, p.inertia)?;
+    let scene = scene(body, p.contact, p.velocity)?;
+    let (e, exact_law) = planar_law(law, p)?;
+    match model::planar::<BigRational>(&scene, e, exact_law, outputs) {
+        Ok(v) => Ok(v),
+        Err(Fail::Refused(e)) => Err(e),
+        // Rationals decide everything; kept total without a panic.
+        Err(Fail::Undecided) => solve_planar(law, p, outputs),
+    }
+}
+
+/// Solves one torsional impact in exact rationals only.
+pub fn solve_torsional_rational(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
+    let v = impact.validate()?;
+    match model::torsional::<BigRational>(&v, energy) {
+        Ok(v) => Ok(v),
+        Err(Fail::Refused(e)) => Err(e),
+        Err(Fail::Undecided) => solve_torsional(impact, energy),
+    }
+}

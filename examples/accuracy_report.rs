@@ -1,0 +1,508 @@
+//! Run time against error for each case and method; writes `docs/accuracy.md`
+//! (table) and `docs/accuracy.svg` (log–log plot of time per solve against
+//! maximum error). Every point is measured; nothing is tuned away.
+//!
+//! ```text
+//! cargo run --release --example accuracy_report
+//! ```
+//!
+//! Methods: `fast` (the service's fast mode: closed forms, escalating extreme
+//! inputs to the exact evaluator), `nalgebra` (the 3×3 momentum system by LU,
+//! with the regime the exact answer found), `exact` (double-double with a
+//! certified bound, rational fallback) and `rational` (exact rationals only).
+//!
+//! Error of an output: its distance, in steps of the f64 grid, from the
+//! correctly rounded exact value (the `rational` answer). The distance to the
+//! exact real value is at most that plus ½. Also given: the same distance in
+//! ulps of the output's scale (the largest magnitude among the velocities it
+//! combines), the measure the fast mode's bound is stated in.
+
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::Instant;
+
+use plotters::prelude::*;
+use restitution::exact;
+use restitution::linear::{TangentialClosure, solve_momentum};
+use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
+use restitution::sweep::torsional::solve_torsional;
+use restitution::torsional::TorsionalImpact;
+use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Precision, Regime};
+
+/// SplitMix64, so the report is reproducible.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+    fn log(&mut self, lo: f64, hi: f64) -> f64 {
+        10f64.powf(self.range(lo, hi))
+    }
+    fn sign(&mut self) -> f64 {
+        if self.next() < 0.5 { -1.0 } else { 1.0 }
+    }
+}
+
+/// Grid steps between `x` and the correctly rounded `reference`.
+fn steps(x: f64, reference: f64) -> f64 {
+    if x == reference {
+        return 0.0;
+    }
+    if !x.is_finite() || !reference.is_finite() {
+        return f64::INFINITY;
+    }
+    let key = |v: f64| {
+        let b = v.to_bits() as i64;
+        if b < 0 { i64::MIN - b } else { b }
+    };
+    (key(x) - key(reference)).unsigned_abs() as f64
+}
+
+fn ulp(x: f64) -> f64 {
+    let x = x.abs();
+    if x.is_finite() { x.next_up() - x } else { f64::MAX }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Set {
+    Typical,
+    Stress,
+}
+
+impl Set {
+    fn name(self) -> &'static str {
+        match self {
+            Set::Typical => "typical",
+            Set::Stress => "stress",
+        }
+    }
+}
+
+/// A planar input: the law and all inputs.
+fn planar_point(rng: &mut Rng, set: Set, law: PlanarLaw) -> PlanarPoint {
+    let (mass, length, speed) = match set {
+        Set::Typical => (rng.log(-1.0, 1.0), rng.log(-1.0, 0.0), rng.log(-1.0, 1.0)),
+        Set::Stress => match (rng.next() * 3.0) as u32 {
+            0 => (
+                rng.log(-300.0, 300.0),
+                rng.log(-150.0, 150.0),
+                rng.log(-150.0, 150.0),
+            ),
+            1 => (rng.log(-1.0, 1.0), 1.0, rng.log(-15.0, -3.0)),
+            _ => (rng.log(-100.0, 100.0), rng.log(-50.0, 50.0), rng.log(-50.0, 50.0)),
+        },
+    };
+    let k = length * rng.log(-1.0, 0.5);
+    let dc = if rng.next() < 0.3 {
+        0.0
+    } else {
+        length * rng.range(-2.0, 2.0)
+    };
+    let dd = length * rng.range(-2.0, 2.0);
+    let w = speed / length * rng.range(-3.0, 3.0);
+    let grazing = set == Set::Stress && rng.next() < 0.3;
+    let vcn = -speed
+        * if grazing {
+            rng.log(-15.0, -6.0)
+        } else {
+            rng.range(0.05, 2.0)
+        };
+    let e = if set == Set::Stress && rng.next() < 0.5 {
+        [0.0, 1.0, 1.0 - 1e-12][(rng.next() * 3.0) as usize]
+    } else {
+        rng.next()
+    };
+    let mut p = PlanarPoint {
+        mass,
+        inertia: mass * k * k,
+        contact: Contact {
+            tangential_offset: dc,
+            normal_offset: dd,
+        },
+        velocity: PlanarVelocity {
+            normal: vcn - dc * w,
+            tangential: speed * rng.range(-3.0, 3.0),
+            angular: w,
+        },
+        restitution: e,
+        friction: rng.range(0.0, 1.0),
+        impulse_ratio: rng.range(-0.3, 0.3),
+        tangential_restitution: rng.range(-1.0, 1.0),
+        ..PlanarPoint::default()
+    };
+    if set == Set::Stress && rng.next() < 0.3 {
+        // f or μ at, or one ulp from, the capped ratio (μ_c for Coulomb).
+        let probe = PlanarPoint {
+            friction: f64::MAX,
+            ..p
+        };
+        if let Ok(o) = exact::solve_planar(law, &probe, Outputs::MINIMAL) {
+            let at = o.impulse_ratio;
+            let near = [at, at.next_up(), at.next_down()][(rng.next() * 3.0) as usize];
+            p.friction = near.abs();
+            p.impulse_ratio = near;
+        }
+    }
+    p
+}
+
+fn torsional_impact(rng: &mut Rng, set: Set) -> TorsionalImpact {
+    let span = if set == Set::Typical { 1.0 } else { 250.0 };
+    let m = rng.log(-span, span);
+    let i_n = rng.log(-span, span);
+    let vn = -rng.log(-span, span);
+    let rho = rng.log(-span.min(100.0), span.min(100.0));
+    let (e, ez, mu_z) = (rng.next(), rng.next(), rng.next());
+    let switch = mu_z * rho * (1.0 + e) * -vn * m / i_n;
+    let spin = if set == Set::Stress && rng.next() < 0.5 && switch.is_finite() {
+        [switch, switch.next_up(), -switch.next_down()][(rng.next() * 3.0) as usize]
+    } else {
+        rng.sign() * rng.log(-span, span)
+    };
+    TorsionalImpact {
+        mass: m,
+        normal_inertia: i_n,
+        normal_velocity: vn,
+        spin,
+        restitution: e,
+        torsional_restitution: ez,
+        torsional_friction: mu_z,
+        pitch_radius: rho,
+    }
+}
+
+/// One method's measurements on one case and set.
+struct Row {
+    case: &'static str,
+    set: Set,
+    method: &'static str,
+    median_ns: f64,
+    mean_ns: f64,
+    median_steps: f64,
+    max_steps: f64,
+    max_scaled: f64,
+    solved: usize,
+    failed: usize,
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Times `solve` per input (`reps` calls each) and measures its outputs against `reference`.
+fn measure<I, O>(
+    case: &'static str,
+    set: Set,
+    method: &'static str,
+    inputs: &[I],
+    reps: u32,
+    solve: impl Fn(&I) -> Option<O>,
+    compare: impl Fn(&I, &O) -> Option<(f64, f64)>,
+) -> Row {
+    let (mut times, mut errors) = (Vec::new(), Vec::new());
+    let (mut max_scaled, mut failed, mut solved) = (0f64, 0, 0);
+    for input in inputs {
+        let start = Instant::now();
+        for _ in 0..reps {
+            black_box(solve(black_box(input)));
+        }
+        times.push(start.elapsed().as_nanos() as f64 / f64::from(reps));
+        match solve(input) {
+            Some(answer) => match compare(input, &answer) {
+                Some((steps, scaled)) => {
+                    solved += 1;
+                    errors.push(steps);
+                    max_scaled = max_scaled.max(scaled);
+                }
+                None => failed += 1,
+            },
+            None => failed += 1,
+        }
+    }
+    let mean_ns = times.iter().sum::<f64>() / times.len() as f64;
+    Row {
+        case,
+        set,
+        method,
+        median_ns: median(&mut times),
+        mean_ns,
+        max_steps: errors.iter().copied().fold(0.0, f64::max),
+        median_steps: median(&mut errors),
+        max_scaled,
+        solved,
+        failed,
+    }
+}
+
+/// `(V_n, V_t, Ω)` errors against the reference: max grid steps and max ulps of the scale.
+fn velocity_error(p: &PlanarPoint, got: &PlanarVelocity, reference: &PlanarVelocity) -> Option<(f64, f64)> {
+    let length = p
+        .contact
+        .tangential_offset
+        .abs()
+        .max(p.contact.normal_offset.abs())
+        .max((p.inertia / p.mass).sqrt());
+    let v = p.velocity;
+    let scale = [v.normal, v.tangential, reference.normal, reference.tangential]
+        .iter()
+        .map(|x| x.abs())
+        .fold(v.angular.abs() * length, f64::max)
+        .max(reference.angular.abs() * length);
+    let pairs = [
+        (got.normal, reference.normal, scale),
+        (got.tangential, reference.tangential, scale),
+        (got.angular, reference.angular, scale / length),
+    ];
+    let mut worst = (0f64, 0f64);
+    for (x, r, s) in pairs {
+        if !x.is_finite() {
+            return None;
+        }
+        worst.0 = worst.0.max(steps(x, r));
+        worst.1 = worst.1.max((x - r).abs() / ulp(s));
+    }
+    Some(worst)
+}
+
+fn planar_rows(case: &'static str, law: PlanarLaw, set: Set, n: usize, rows: &mut Vec<Row>) {
+    let mut rng = Rng(0x5EED ^ (n as u64) ^ (law as u64) << 8 ^ (set as u64) << 16);
+    let inputs: Vec<(PlanarPoint, PlanarVelocity, Option<TangentialClosure>)> = (0..n)
+        .filter_map(|_| {
+            let p = planar_point(&mut rng, set, law);
+            let reference = exact::solve_planar_rational(law, &p, Outputs::ALL).ok()?;
+            let closure = match reference.regime {
+                Regime::Sticking | Regime::Restitution => Some(TangentialClosure::ContactVelocity(
+                    reference.contact_velocity.r#final.tangential,
+                )),
+                _ => Some(TangentialClosure::ImpulseRatio(reference.impulse_ratio)),
+            };
+            Some((p, reference.final_velocity, closure))
+        })
+        .collect();
+    let scale = if set == Set::Typical { 1 } else { 4 };
+    let compare = |(p, reference, _): &(PlanarPoint, PlanarVelocity, _), got: &PlanarVelocity| {
+        velocity_error(p, got, reference)
+    };
+    let reps_fast = 400 / scale;
+    rows.push(measure(
+        case,
+        set,
+        "fast",
+        &inputs,
+        reps_fast as u32,
+        |(p, _, _)| {
+            solve_point(law, p, Outputs::ALL, Precision::Fast)
+                .ok()
+                .map(|o| o.final_velocity)
+        },
+        compare,
+    ));
+    rows.push(measure(
+        case,
+        set,
+        "nalgebra",
+        &inputs,
+        reps_fast as u32,
+        |(p, _, closure)| {
+            let scene = PlanarScene::new(Body::new(p.mass, p.inertia).ok()?, p.contact, p.velocity).ok()?;
+            solve_momentum(&scene, p.restitution, (*closure)?)
+        },
+        compare,
+    ));
+    rows.push(measure(
+        case,
+        set,
+        "exact",
+        &inputs,
+        (100 / scale) as u32,
+        |(p, _, _)| {
+            exact::solve_planar(law, p, Outputs::ALL)
+                .ok()
+                .map(|o| o.final_velocity)
+        },
+        compare,
+    ));
+    rows.push(measure(
+        case,
+        set,
+        "rational",
+        &inputs,
+        3,
+        |(p, _, _)| {
+            exact::solve_planar_rational(law, p, Outputs::ALL)
+                .ok()
+                .map(|o| o.final_velocity)
+        },
+        compare,
+    ));
+}
+
+fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
+    let mut rng = Rng(0x70E5 ^ (set as u64) << 16);
+    let inputs: Vec<(TorsionalImpact, f64)> = (0..n)
+        .filter_map(|_| {
+            let impact = torsional_impact(&mut rng, set);
+            let reference = exact::solve_torsional_rational(&impact, true).ok()?;
+            Some((impact, reference.final_spin))
+        })
+        .collect();
+    let compare = |(impact, reference): &(TorsionalImpact, f64), got: &f64| {
+        let scale = impact.spin.abs().max(reference.abs());
+        Some((steps(*got, *reference), (got - reference).abs() / ulp(scale)))
+    };
+    let scale = if set == Set::Typical { 1 } else { 4 };
+    rows.push(measure(
+        "torsional",
+        set,
+        "fast",
+        &inputs,
+        400 / scale,
+        |(impact, _)| {
+            solve_torsional(impact, true, Precision::Fast)
+                .ok()
+                .map(|o| o.final_spin)
+        },
+        compare,
+    ));
+    rows.push(measure(
+        "torsional",
+        set,
+        "exact",
+        &inputs,
+        100 / scale,
+        |(impact, _)| exact::solve_torsional(impact, true).ok().map(|o| o.final_spin),
+        compare,
+    ));
+    rows.push(measure(
+        "torsional",
+        set,
+        "rational",
+        &inputs,
+        3,
+        |(impact, _)| {
+            exact::solve_torsional_rational(impact, true)
+                .ok()
+                .map(|o| o.final_spin)
+        },
+        compare,
+    ));
+}
+
+fn plot(rows: &[Row], path: &str) {
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE).expect("svg");
+    let x_max = rows.iter().map(|r| r.median_ns).fold(1.0, f64::max) * 3.0;
+    let y_max = rows
+        .iter()
+        .map(|r| r.max_steps + 0.5)
+        .filter(|y| y.is_finite())
+        .fold(1.0, f64::max)
+        * 3.0;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Time per solve against maximum error", ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((5.0..x_max).log_scale(), (0.3..y_max).log_scale())
+        .expect("chart");
+    chart
+        .configure_mesh()
+        .x_desc("median time per solve (ns, log)")
+        .y_desc("max error: grid steps from the exact value + 1/2 (log)")
+        .draw()
+        .expect("mesh");
+    let methods = [
+        ("fast", RGBColor(78, 121, 167)),
+        ("nalgebra", RGBColor(242, 142, 43)),
+        ("exact", RGBColor(89, 161, 79)),
+        ("rational", RGBColor(225, 87, 89)),
+    ];
+    for (method, color) in methods {
+        let points: Vec<(f64, f64, &Row)> = rows
+            .iter()
+            .filter(|r| r.method == method && (r.max_steps + 0.5).is_finite())
+            .map(|r| (r.median_ns, r.max_steps + 0.5, r))
+            .collect();
+        chart
+            .draw_series(points.iter().map(|(x, y, r)| {
+                let marker = if r.set == Set::Typical { 0 } else { 1 };
+                EmptyElement::at((*x, *y))
+                    + Circle::new((0, 0), 5, ShapeStyle::from(color).stroke_width(2 - marker))
+                    + Text::new(
+                        format!("{} {}", r.case, &r.set.name()[..1]),
+                        (6, -12),
+                        ("sans-serif", 10).into_font().color(&color),
+                    )
+            }))
+            .expect("series")
+            .label(method)
+            .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .expect("legend");
+    root.present().expect("write svg");
+}
+
+fn main() {
+    let mut rows = Vec::new();
+    for set in [Set::Typical, Set::Stress] {
+        let n = if set == Set::Typical { 2000 } else { 600 };
+        planar_rows("prescribed μ", PlanarLaw::ImpulseRatio, set, n, &mut rows);
+        planar_rows("Coulomb f", PlanarLaw::Friction, set, n, &mut rows);
+        planar_rows(
+            "tangential e_t",
+            PlanarLaw::TangentialRestitution,
+            set,
+            n,
+            &mut rows,
+        );
+        torsional_rows(set, n, &mut rows);
+    }
+    let mut table = String::new();
+    table.push_str(
+        "| case | set | method | median ns/solve | mean ns/solve | median error (steps) | max error (steps) | max error (ulps of scale) | answered | not answered |\n",
+    );
+    table.push_str("|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    for r in &rows {
+        writeln!(
+            table,
+            "| {} | {} | {} | {:.0} | {:.0} | {} | {} | {:.2} | {} | {} |",
+            r.case,
+            r.set.name(),
+            r.method,
+            r.median_ns,
+            r.mean_ns,
+            r.median_steps,
+            r.max_steps,
+            r.max_scaled,
+            r.solved,
+            r.failed
+        )
+        .expect("string");
+    }
+    print!("{table}");
+    plot(&rows, "docs/accuracy.svg");
+    let doc = std::fs::read_to_string("docs/accuracy.md").unwrap_or_default();
+    let (begin, end) = ("<!-- report:begin -->", "<!-- report:end -->");
+    let updated = match (doc.find(begin), doc.find(end)) {
+        (Some(a), Some(b)) => format!("{}{begin}\n{table}{}", &doc[..a], &doc[b..]),
+        _ => format!("{doc}\n{begin}\n{table}{end}\n"),
+    };
+    std::fs::write("docs/accuracy.md", updated).expect("write docs/accuracy.md");
+}
