@@ -88,6 +88,45 @@ impl PointMass {
         let e = in_range(Input::Restitution, impact.restitution, 0.0, 1.0)?;
         Ok(PointMass { mass, vn, vt, e })
     }
+
+    /// The outcome from its computed outputs: the tangential velocity is
+    /// unchanged, there is no spin and no tangential impulse.
+    pub(crate) fn outcome(
+        &self,
+        final_normal: f64,
+        normal_impulse: f64,
+        critical_impulse_ratio: Option<f64>,
+        energy: Option<PlanarEnergy>,
+    ) -> PlanarOutcome {
+        let PointMass { vn, vt, e, .. } = *self;
+        PlanarOutcome {
+            final_velocity: PlanarVelocity {
+                normal: final_normal,
+                tangential: vt,
+                angular: 0.0,
+            },
+            contact_velocity: ContactVelocities {
+                initial: ContactVelocity {
+                    normal: vn,
+                    tangential: vt,
+                },
+                r#final: ContactVelocity {
+                    normal: final_normal,
+                    tangential: vt,
+                },
+            },
+            impulse: Impulse {
+                normal: normal_impulse,
+                tangential: 0.0,
+            },
+            impulse_ratio: 0.0,
+            critical_impulse_ratio,
+            restitution: e,
+            kinetic_restitution: e,
+            regime: Regime::Frictionless,
+            energy,
+        }
+    }
 }
 
 /// A point mass: `V_n = −e v_n`, `P_n = m (1 + e) |v_n|`, `V_t = v_t`.
@@ -128,32 +167,12 @@ fn point_mass(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> 
     } else {
         None
     };
-    let contact = ContactVelocity {
-        normal: vn,
-        tangential: vt,
-    };
-    Ok(PlanarOutcome {
-        final_velocity: PlanarVelocity {
-            normal: final_normal,
-            tangential: vt,
-            angular: 0.0,
-        },
-        contact_velocity: ContactVelocities {
-            initial: contact,
-            r#final: ContactVelocity {
-                normal: final_normal,
-                tangential: vt,
-            },
-        },
-        impulse: Impulse {
-            normal: normal_impulse,
-            tangential: 0.0,
-        },
-        impulse_ratio: 0.0,
-        critical_impulse_ratio,
-        restitution: e,
-        kinetic_restitution: e,
-        regime: Regime::Frictionless,
-        energy,
-    })
+    Ok(
+        PointMass { mass: m, vn, vt, e }.outcome(
+            final_normal,
+            normal_impulse,
+            critical_impulse_ratio,
+            energy,
+        ),
+    )
 }

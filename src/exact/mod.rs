@@ -165,9 +165,9 @@ pub fn solve_planar_staged(
         };
         return adaptive(|rational| {
             if rational {
-                model::point_mass::<BigRational>(v.mass, v.vn, v.vt, v.e, outputs)
+                model::point_mass::<BigRational>(&v, outputs)
             } else {
-                model::point_mass::<Bounded>(v.mass, v.vn, v.vt, v.e, outputs)
+                model::point_mass::<Bounded>(&v, outputs)
             }
         });
     }

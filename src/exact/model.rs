@@ -13,6 +13,7 @@ use std::cmp::Ordering;
 use super::field::Field;
 use crate::energy::PlanarEnergy;
 use crate::error::{ImpactError, Input, Output};
+use crate::normal::PointMass;
 use crate::planar::{
     ContactVelocities, Impulse, Outputs, PlanarOutcome, Regime, admissible_interval, no_impulse_solution,
 };
@@ -439,13 +440,8 @@ pub(crate) fn planar<N: Field>(
 
 /// A point mass: `V_n = −e v_n`, `P_n = m (1 + e)(−v_n)`, `μ_c = v_t / ((1 + e) v_n)`,
 /// `T_M` the whole initial energy, `T_L = ½ m (1 − e)(1 + e) v_n²`.
-pub(crate) fn point_mass<N: Field>(
-    m: f64,
-    vn: f64,
-    vt: f64,
-    e: f64,
-    outputs: Outputs,
-) -> Exact<PlanarOutcome> {
+pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<PlanarOutcome> {
+    let PointMass { mass: m, vn, vt, e } = *p;
     let (m_n, vn_n, vt_n, e_n) = (N::of(m), N::of(vn), N::of(vt), N::of(e));
     let one = N::of(1.0);
     let final_normal = out(Output::FinalNormalVelocity, &e_n.mul(&vn_n).neg())?;
@@ -475,34 +471,7 @@ pub(crate) fn point_mass<N: Field>(
     } else {
         None
     };
-    let contact = ContactVelocity {
-        normal: vn,
-        tangential: vt,
-    };
-    Ok(PlanarOutcome {
-        final_velocity: PlanarVelocity {
-            normal: final_normal,
-            tangential: vt,
-            angular: 0.0,
-        },
-        contact_velocity: ContactVelocities {
-            initial: contact,
-            r#final: ContactVelocity {
-                normal: final_normal,
-                tangential: vt,
-            },
-        },
-        impulse: Impulse {
-            normal: normal_impulse,
-            tangential: 0.0,
-        },
-        impulse_ratio: 0.0,
-        critical_impulse_ratio,
-        restitution: e,
-        kinetic_restitution: e,
-        regime: Regime::Frictionless,
-        energy,
-    })
+    Ok(p.outcome(final_normal, normal_impulse, critical_impulse_ratio, energy))
 }
 
 /// The torsional model (Eqs 28–31) in the field: switch
