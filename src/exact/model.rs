@@ -91,6 +91,14 @@ struct Scene<'a, N> {
     vct: N,
     /// `s = −v_cn > 0`.
     s: N,
+    /// `k² + d_c²`.
+    k2_dc2: N,
+    /// `k² + d_d²`.
+    k2_dd2: N,
+    /// `d_c d_d`.
+    cross: N,
+    /// `S = k² + d_c² + d_d²`.
+    total: N,
 }
 
 impl<'a, N: Field> Scene<'a, N> {
@@ -104,10 +112,17 @@ impl<'a, N: Field> Scene<'a, N> {
         let w = N::of(fast.velocity.angular);
         let vcn = vn.add(&dc.mul(&w));
         let vct = vt.sub(&dd.mul(&w));
+        let k2 = inertia.div(&m);
+        let dd2 = dd.mul(&dd);
+        let k2_dc2 = k2.add(&dc.mul(&dc));
         Scene {
             fast,
-            k2: inertia.div(&m),
             s: vcn.neg(),
+            k2_dd2: k2.add(&dd2),
+            cross: dc.mul(&dd),
+            total: k2_dc2.add(&dd2),
+            k2_dc2,
+            k2,
             m,
             inertia,
             dc,
@@ -136,9 +151,7 @@ impl<'a, N: Field> Scene<'a, N> {
         let dn = self.k2.mul(&per);
         let dt = mu.mul(&dn);
         let dw = self.dc.sub(&mu.mul(&self.dd)).mul(&per);
-        let lever = mu
-            .mul(&self.k2.add(&self.dd.mul(&self.dd)))
-            .sub(&self.dc.mul(&self.dd));
+        let lever = mu.mul(&self.k2_dd2).sub(&self.cross);
         [dn, dt, dw, lever.mul(&per)]
     }
 
@@ -166,13 +179,10 @@ impl<'a, N: Field> Scene<'a, N> {
         let one = N::of(1.0);
         let qn = one.add(e).mul(&self.s);
         let qt = one.add(&N::of(et)).mul(&self.vct);
-        let dd2 = self.dd.mul(&self.dd);
-        let dc2 = self.dc.mul(&self.dc);
-        let cross = self.dc.mul(&self.dd);
-        let total = self.k2.add(&dc2).add(&dd2);
-        let dn = self.k2.add(&dd2).mul(&qn).sub(&cross.mul(&qt)).div(&total);
-        let dt = cross.mul(&qn).sub(&self.k2.add(&dc2).mul(&qt)).div(&total);
-        let dw = self.dc.mul(&qn).add(&self.dd.mul(&qt)).div(&total);
+        let (cross, total) = (&self.cross, &self.total);
+        let dn = self.k2_dd2.mul(&qn).sub(&cross.mul(&qt)).div(total);
+        let dt = cross.mul(&qn).sub(&self.k2_dc2.mul(&qt)).div(total);
+        let dw = self.dc.mul(&qn).add(&self.dd.mul(&qt)).div(total);
         let mu = (sign(&dn)? != Ordering::Equal).then(|| dt.div(&dn));
         Ok(Answer {
             vcn: e.mul(&self.vcn).neg(),
@@ -370,13 +380,12 @@ impl<'a, N: Field> Scene<'a, N> {
             half::<N>().mul(&translation.add(&self.inertia.mul(&w.mul(w))))
         };
         let loss = half::<N>().mul(&self.m.mul(work)).neg();
-        let total = self.k2.add(&self.dc.mul(&self.dc)).add(&self.dd.mul(&self.dd));
         let speed2 = self.vcn.mul(&self.vcn).add(&self.vct.mul(&self.vct));
         let lever = self.dd.mul(&self.vcn).add(&self.dc.mul(&self.vct));
         let max_loss = half::<N>()
             .mul(&self.m)
             .mul(&self.k2.mul(&speed2).add(&lever.mul(&lever)))
-            .div(&total);
+            .div(&self.total);
         Ok(PlanarEnergy {
             initial: out(Output::InitialEnergy, &kinetic(&self.vn, &self.vt, &self.w))?,
             r#final: out(Output::FinalEnergy, &kinetic(vn, vt, w))?,
