@@ -205,6 +205,9 @@ pub struct PlanarSweep {
     outputs: Outputs,
     precision: Precision,
     fixed_scene: Option<Result<PlanarScene>>,
+    /// The inputs whose range the fast mode checks per point: the swept ones
+    /// when every fixed input is in range, else all the law reads.
+    range_checked: Vec<Input>,
 }
 
 impl PlanarSweep {
@@ -215,14 +218,22 @@ impl PlanarSweep {
             critical_impulse_ratio: columns.contains(&PlanarColumn::CriticalImpulseRatio),
             energy: columns.iter().any(|c| c.needs_energy()),
         };
+        let fixed_in_range =
+            read_inputs(law).all(|input| swept.contains(&input) || in_fast_range(get(base, input)));
+        let range_checked = read_inputs(law)
+            .filter(|input| !fixed_in_range || swept.contains(input))
+            .collect();
+        // Out of range, the exact evaluator builds its own scene per point.
         let fixed_scene =
-            (law != PlanarLaw::PointMass && !swept.iter().any(|&p| is_scene(p))).then(|| scene(base));
+            (law != PlanarLaw::PointMass && fixed_in_range && !swept.iter().any(|&p| is_scene(p)))
+                .then(|| scene(base));
         PlanarSweep {
             law,
             columns,
             outputs,
             precision: Precision::Fast,
             fixed_scene,
+            range_checked,
         }
     }
 
@@ -247,11 +258,21 @@ impl PlanarSweep {
             return exact::solve_planar(self.law, p, self.outputs);
         }
         match &self.fixed_scene {
-            Some(Ok(scene)) => escalate(self.law, p, self.outputs, || {
-                solve_in_scene(self.law, scene, p, self.outputs)
-            }),
+            Some(Ok(scene)) => escalate(
+                self.law,
+                p,
+                self.range_checked.iter().copied(),
+                self.outputs,
+                || solve_in_scene(self.law, scene, p, self.outputs),
+            ),
             Some(Err(e)) => Err(e.clone()),
-            None => solve_fast(self.law, p, self.outputs),
+            None => escalate(
+                self.law,
+                p,
+                self.range_checked.iter().copied(),
+                self.outputs,
+                || closed_forms(self.law, p, self.outputs),
+            ),
         }
     }
 }
@@ -306,16 +327,17 @@ fn get(p: &PlanarPoint, input: Input) -> f64 {
 /// The fast mode's answer: the closed forms when every input the law reads is
 /// in [`FAST_RANGE`]; otherwise, and to confirm an output that overflows, the
 /// exact evaluator, which neither overflows nor underflows in between.
+///
+/// `checked` are the inputs whose range is checked here; a sweep checks only
+/// its swept inputs per point, having checked the rest once.
 fn escalate(
     law: PlanarLaw,
     p: &PlanarPoint,
+    checked: impl IntoIterator<Item = Input>,
     outputs: Outputs,
     closed_forms: impl FnOnce() -> Result<PlanarOutcome>,
 ) -> Result<PlanarOutcome> {
-    let in_range = PLANAR_INPUTS
-        .iter()
-        .all(|&input| !law.reads(input) || in_fast_range(get(p, input)));
-    if !in_range {
+    if !checked.into_iter().all(|input| in_fast_range(get(p, input))) {
         return exact::solve_planar(law, p, outputs);
     }
     match closed_forms() {
@@ -326,7 +348,14 @@ fn escalate(
 
 /// Solves one planar impact in the fast mode.
 fn solve_fast(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
-    escalate(law, p, outputs, || closed_forms(law, p, outputs))
+    escalate(law, p, read_inputs(law), outputs, || {
+        closed_forms(law, p, outputs)
+    })
+}
+
+/// The inputs `law` reads.
+fn read_inputs(law: PlanarLaw) -> impl Iterator<Item = Input> {
+    PLANAR_INPUTS.into_iter().filter(move |&input| law.reads(input))
 }
 
 /// Solves one planar impact by the f64 closed forms.
