@@ -8,6 +8,7 @@
 //! Unlike the fast path, no formula here is chosen for its rounding: any
 //! algebraically equal form has the same exact value.
 
+use std::cell::OnceCell;
 use std::cmp::Ordering;
 
 use super::field::Field;
@@ -99,6 +100,8 @@ struct Scene<'a, N> {
     cross: N,
     /// `S = k² + d_c² + d_d²`.
     total: N,
+    /// `1 / S`, formed when first needed.
+    inv_total: OnceCell<N>,
 }
 
 impl<'a, N: Field> Scene<'a, N> {
@@ -121,6 +124,7 @@ impl<'a, N: Field> Scene<'a, N> {
             k2_dd2: k2.add(&dd2),
             cross: dc.mul(&dd),
             total: k2_dc2.add(&dd2),
+            inv_total: OnceCell::new(),
             k2_dc2,
             k2,
             m,
@@ -171,32 +175,48 @@ impl<'a, N: Field> Scene<'a, N> {
         })
     }
 
+    /// `S Δn = (k² + d_d²) q_n − d_c d_d q_t` and `S Δt = d_c d_d q_n − (k² + d_c²) q_t`:
+    /// the impulses that change `v_cn` by `q_n` and `v_ct` by `−q_t`.
+    fn scaled_impulses(&self, qn: &N, qt: &N) -> (N, N) {
+        let cross = &self.cross;
+        (
+            self.k2_dd2.mul(qn).sub(&cross.mul(qt)),
+            cross.mul(qn).sub(&self.k2_dc2.mul(qt)),
+        )
+    }
+
     /// The answer with `V_cn = −e v_cn` and `V_ct = −e_t v_ct` (Eqs 1, 20, 3):
     /// `Δn = [(k² + d_d²) q_n − d_c d_d q_t] / S`, `Δt = [d_c d_d q_n − (k² + d_c²) q_t] / S`,
-    /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`. Its ratio is set
-    /// only where `Δn ≠ 0`.
+    /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`. Its ratio
+    /// `Δt / Δn` is set only where `Δn ≠ 0`.
     fn target_answer(&self, e: &N, et: f64) -> Exact<Answer<N>> {
         let one = N::of(1.0);
         let qn = one.add(e).mul(&self.s);
         let qt = one.add(&N::of(et)).mul(&self.vct);
-        let (cross, total) = (&self.cross, &self.total);
-        let dn = self.k2_dd2.mul(&qn).sub(&cross.mul(&qt)).div(total);
-        let dt = cross.mul(&qn).sub(&self.k2_dc2.mul(&qt)).div(total);
-        let dw = self.dc.mul(&qn).add(&self.dd.mul(&qt)).div(total);
-        let mu = (sign(&dn)? != Ordering::Equal).then(|| dt.div(&dn));
+        let (sdn, sdt) = self.scaled_impulses(&qn, &qt);
+        let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
+        let inv_total = self.inv_total();
         Ok(Answer {
             vcn: e.mul(&self.vcn).neg(),
             vct: N::of(et).mul(&self.vct).neg(),
-            dn,
-            dt,
-            dw,
+            dn: sdn.mul(inv_total),
+            dt: sdt.mul(inv_total),
+            dw: self.dc.mul(&qn).add(&self.dd.mul(&qt)).mul(inv_total),
             mu,
         })
     }
 
-    /// `μ_c`: the ratio of the answer that ends with `V_ct = 0`, `None` if its `Δn = 0`.
+    /// `1 / S`, formed once.
+    fn inv_total(&self) -> &N {
+        self.inv_total.get_or_init(|| N::of(1.0).div(&self.total))
+    }
+
+    /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `V_ct = 0`
+    /// (`q_t = v_ct`), `None` if its `Δn = 0`.
     fn critical_ratio(&self, e: &N) -> Exact<Option<N>> {
-        Ok(self.target_answer(e, 0.0)?.mu)
+        let qn = N::of(1.0).add(e).mul(&self.s);
+        let (sdn, sdt) = self.scaled_impulses(&qn, &self.vct);
+        Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
     }
 
     /// The bilinear law (Coulomb friction for `e_t = 0`).
@@ -336,7 +356,7 @@ impl<'a, N: Field> Scene<'a, N> {
             None => None,
         };
         let energy = if outputs.energy {
-            Some(self.energy(&vn, &vt, &w, &work)?)
+            Some(self.energy(&work)?)
         } else {
             None
         };
@@ -372,23 +392,26 @@ impl<'a, N: Field> Scene<'a, N> {
         })
     }
 
-    /// Kinetic energies `½ m (v_n² + v_t²) + ½ I ω²`, the loss from the work,
+    /// The initial energy `½ m (v_n² + v_t²) + ½ I ω²`, the loss from the work
+    /// (Eq 8), the final energy as their difference (the work form equals
+    /// `T_0 − T_f` exactly, by the moment equation),
     /// `T_M = ½ m [k² (v_cn² + v_ct²) + (d_d v_cn + d_c v_ct)²] / S` and `T_L* = T_L / T_M`.
-    fn energy(&self, vn: &N, vt: &N, w: &N, work: &N) -> Exact<PlanarEnergy> {
-        let kinetic = |vn: &N, vt: &N, w: &N| {
-            let translation = self.m.mul(&vn.mul(vn).add(&vt.mul(vt)));
-            half::<N>().mul(&translation.add(&self.inertia.mul(&w.mul(w))))
-        };
-        let loss = half::<N>().mul(&self.m.mul(work)).neg();
+    fn energy(&self, work: &N) -> Exact<PlanarEnergy> {
+        // ½ m and ½ I are exact (unless below the normal range, where the bound says so).
+        let half_m = half::<N>().mul(&self.m);
+        let half_i = half::<N>().mul(&self.inertia);
+        let initial = half_m
+            .mul(&self.vn.mul(&self.vn).add(&self.vt.mul(&self.vt)))
+            .add(&half_i.mul(&self.w.mul(&self.w)));
+        let loss = half_m.mul(work).neg();
         let speed2 = self.vcn.mul(&self.vcn).add(&self.vct.mul(&self.vct));
         let lever = self.dd.mul(&self.vcn).add(&self.dc.mul(&self.vct));
-        let max_loss = half::<N>()
-            .mul(&self.m)
+        let max_loss = half_m
             .mul(&self.k2.mul(&speed2).add(&lever.mul(&lever)))
-            .div(&self.total);
+            .mul(self.inv_total());
         Ok(PlanarEnergy {
-            initial: out(Output::InitialEnergy, &kinetic(&self.vn, &self.vt, &self.w))?,
-            r#final: out(Output::FinalEnergy, &kinetic(vn, vt, w))?,
+            initial: out(Output::InitialEnergy, &initial)?,
+            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?,
             loss: out(Output::EnergyLoss, &loss)?,
             max_loss: out(Output::MaxEnergyLoss, &max_loss)?,
             normalized_loss: out(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?,
