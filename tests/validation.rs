@@ -1,196 +1,206 @@
-//! Validation against experiment: Kharaz, Gorham & Salman (2001), 5 mm Al₂O₃
-//! spheres on glass at 3.9 m/s (`tests/data/`, copied from
-//! `../shared/validation/`: three independent digitizations of the published
-//! figures). A sphere (`I = 2/5 m R²`, contact
-//! at `d_c = 0`, `d_d = R`) in the planar model with `e = 0.98`, `f = 0.092`:
-//! (a) Coulomb friction alone (`e_t = 0`), (b) the bilinear tangential
-//! restitution model with `e_t` fitted to the data. Deviations per quantity and
-//! per regime are printed (`cargo test --test validation -- --nocapture`) and
-//! bounded.
+//! Validation against experiment and published benchmarks: Kharaz, Gorham &
+//! Salman (2001) (experiment, three digitizations) and Chung & Ooi (2011)
+//! Tests 4–6 (DEM reference curves). Datasets and the model (a sphere in the
+//! planar model, computed by the sweep engine) are in
+//! `tests/common/validation.rs`; the tables and plots in `docs/validation.md`
+//! come from `cargo run --release --example validation_report`.
+//!
+//! Bounds. Where the model slides, it and every source share Coulomb's law,
+//! so the deviations there should be digitization scatter. That scatter is
+//! measured, not assumed: Chung & Ooi's Test 6 curve was digitized twice (the
+//! Test 6 file and the Test 8 file's `sphere_vs_plane_test6` block), and their
+//! RMS difference as a fraction of the curve's span is the scatter of one
+//! digitization of these figures. DEM curves must stay within 3× that
+//! fraction of each quantity's span. The experiment states its own scatter
+//! (0.3°, 0.003, 5 rad/s) and, since the incidence angle itself scatters and
+//! spin is measured, gets 10× that.
 
-use std::collections::BTreeMap;
+mod common;
 
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
+use common::validation::{self, Dataset, Deviation, Point, Quantity};
 
-/// A copy of `../shared/validation/kharaz2001_al2o3_on_glass_experiment.csv`
-/// (provenance in its header), kept in the repository so a clean clone tests it.
-const DATA: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/kharaz2001_al2o3_on_glass_experiment.csv"
-);
-const RADIUS: f64 = 0.0025;
-const SPEED: f64 = 3.9;
-const E: f64 = 0.98;
-const F: f64 = 0.092;
-
-#[derive(Debug, Clone)]
-struct Point {
-    source: String,
-    quantity: String,
-    angle_deg: f64,
-    value: f64,
+fn digitization_scatter() -> f64 {
+    validation::digitization_scatter().expect("Test 6 and Test 8 data")
 }
 
-fn load() -> Option<Vec<Point>> {
-    let text = std::fs::read_to_string(DATA).ok()?;
-    let mut points = Vec::new();
-    for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
-        let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() < 4 {
-            continue;
-        }
-        points.push(Point {
-            source: fields[0].to_owned(),
-            quantity: fields[1].to_owned(),
-            angle_deg: fields[2].parse().ok()?,
-            value: fields[3].parse().ok()?,
-        });
-    }
-    Some(points)
+fn span(points: &[Point]) -> f64 {
+    validation::span(points)
 }
 
-/// The model's value of `quantity` at incidence `angle_deg` (from the normal),
-/// and its regime.
-fn model(quantity: &str, angle_deg: f64, et: f64) -> (f64, &'static str) {
-    let theta = angle_deg.to_radians();
-    let mass = 1.0;
-    let scene = PlanarScene::new(
-        Body::new(mass, 0.4 * mass * RADIUS * RADIUS).unwrap(),
-        Contact::central(RADIUS),
-        PlanarVelocity {
-            normal: -SPEED * theta.cos(),
-            tangential: SPEED * theta.sin(),
-            angular: 0.0,
-        },
-    )
-    .unwrap();
-    let o = tangential::solve(&scene, E, F, et, Outputs::MINIMAL).unwrap();
-    let v = o.final_velocity;
-    let value = match quantity {
-        "rebound_angle_centroid" => v.tangential.atan2(v.normal).to_degrees(),
-        "rebound_angle_contact_point" => o.contact_velocity.r#final.tangential.atan2(v.normal).to_degrees(),
-        "tangential_cor_centroid" => v.tangential / (SPEED * theta.sin()),
-        "spin_magnitude" => v.angular.abs(),
-        other => panic!("unknown quantity {other}"),
-    };
-    (value, o.regime.as_str())
+/// The span of every series of `quantity` together.
+fn quantity_span(d: &Dataset, quantity: Quantity) -> f64 {
+    let points: Vec<Point> = d.of(quantity).flat_map(|s| s.points.iter().copied()).collect();
+    span(&points)
 }
 
-/// RMS and maximum |model − data| per (quantity, regime).
-fn deviations(points: &[Point], et: f64) -> BTreeMap<(String, &'static str), (f64, f64, usize)> {
-    let mut sums: BTreeMap<(String, &'static str), (f64, f64, usize)> = BTreeMap::new();
-    for p in points {
-        // V_t / v_t is undefined at normal incidence.
-        if p.quantity == "tangential_cor_centroid" && p.angle_deg < 1.0 {
-            continue;
-        }
-        let (m, regime) = model(&p.quantity, p.angle_deg, et);
-        let d = (m - p.value).abs();
-        let entry = sums.entry((p.quantity.clone(), regime)).or_insert((0.0, 0.0, 0));
-        entry.0 += d * d;
-        entry.1 = entry.1.max(d);
-        entry.2 += 1;
-    }
-    sums.into_iter()
-        .map(|(k, (ss, max, n))| (k, ((ss / n as f64).sqrt(), max, n)))
-        .collect()
+fn deviation(d: &Dataset, et: f64, min_x: f64, quantity: Quantity, regime: &str) -> Deviation {
+    d.deviations(et, min_x)
+        .into_iter()
+        .find(|((q, r), _)| *q == quantity && *r == regime)
+        .map(|(_, dev)| dev)
+        .unwrap_or_else(|| panic!("{}: no {} points in {regime}", d.key, quantity.name()))
 }
 
-/// e_t minimising the sum of squared deviations of V_t/v_t (dimensionless, the
-/// quantity every digitization has) over the points at incidences of at least
-/// `min_angle_deg`, by golden-section search on [0, 1].
-fn fit_et(points: &[Point], min_angle_deg: f64) -> f64 {
-    let cost = |et: f64| -> f64 {
-        points
-            .iter()
-            .filter(|p| p.quantity == "tangential_cor_centroid" && p.angle_deg >= min_angle_deg)
-            .map(|p| {
-                let (m, _) = model(&p.quantity, p.angle_deg, et);
-                (m - p.value).powi(2)
-            })
-            .sum()
-    };
-    let (mut a, mut b) = (0.0f64, 1.0f64);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..60 {
-        let c = b - g * (b - a);
-        let d = a + g * (b - a);
-        if cost(c) < cost(d) {
-            b = d;
-        } else {
-            a = c;
+/// Deviations of `quantity` over every point at abscissa `≥ min_x`, both regimes.
+fn overall(d: &Dataset, et: f64, min_x: f64, quantity: Quantity) -> Deviation {
+    let mut all = Deviation::default();
+    for ((q, _), dev) in d.deviations(et, min_x) {
+        if q == quantity {
+            all.sum_squares += dev.sum_squares;
+            all.max = all.max.max(dev.max);
+            all.count += dev.count;
         }
     }
-    (a + b) / 2.0
-}
-
-fn report(title: &str, table: &BTreeMap<(String, &'static str), (f64, f64, usize)>) {
-    println!("\n{title}\n");
-    println!("| quantity | model regime | points | RMS | max |");
-    println!("|---|---|---:|---:|---:|");
-    for ((quantity, regime), (rms, max, n)) in table {
-        println!("| {quantity} | {regime} | {n} | {rms:.4} | {max:.4} |");
-    }
+    all
 }
 
 #[test]
-fn kharaz_spheres_on_glass() {
-    let Some(points) = load() else {
-        panic!("the validation data are missing: {DATA}");
-    };
-    assert!(points.len() > 60);
-    let sources: std::collections::BTreeSet<&str> = points.iter().map(|p| p.source.as_str()).collect();
-    assert_eq!(sources.len(), 3, "three digitizations");
+fn every_dataset_is_present_with_its_sources() {
+    let kharaz = validation::kharaz().expect("Kharaz data");
+    let mut sources: Vec<&str> = kharaz.series.iter().map(|s| s.source.as_str()).collect();
+    sources.sort();
+    sources.dedup();
+    assert_eq!(sources, ["kratos_chung_ooi", "lethe", "mfix_dem05"]);
+    let count = |d: &Dataset| d.series.iter().map(|s| s.points.len()).sum::<usize>();
+    assert_eq!(count(&kharaz), 79);
+    let test4 = validation::chung_ooi_test4().expect("Test 4 data");
+    assert_eq!((test4.series.len(), count(&test4)), (5, 65));
+    let test5 = validation::chung_ooi_test5().expect("Test 5 data");
+    assert_eq!((test5.series.len(), count(&test5)), (2, 30));
+    let test6 = validation::chung_ooi_test6().expect("Test 6 data");
+    assert_eq!((test6.series.len(), count(&test6)), (3, 51));
+}
 
-    let coulomb = deviations(&points, 0.0);
-    report("(a) Coulomb friction only (e_t = 0)", &coulomb);
-    let et = fit_et(&points, 1.0);
-    // Near-normal incidence the measured V_t/v_t (0.75–0.79 below 4°) lies above
-    // the model's sticking value 1 − 1/(1 + λ) = 0.714 for any e_t ≥ 0: the
-    // contact point does not reverse there. Fitted without those points:
-    let et_above_5 = fit_et(&points, 5.0);
-    println!("\nfitted e_t = {et:.4} (all incidences), {et_above_5:.4} (incidence ≥ 5°)");
-    let above = deviations(&points, et_above_5);
-    report(
-        &format!("(c) bilinear model, e_t = {et_above_5:.3} (fitted at incidence ≥ 5°)"),
-        &above,
-    );
-    let bilinear = deviations(&points, et);
-    report(&format!("(b) bilinear model, e_t = {et:.3}"), &bilinear);
+#[test]
+fn the_two_digitizations_of_one_figure_agree_to_under_one_percent_of_its_span() {
+    let scatter = digitization_scatter();
+    assert!(scatter > 0.0 && scatter < 0.01, "scatter {scatter}");
+}
 
-    // Sliding regime (large incidence): both models are the same Coulomb line, and
-    // it follows the data to within a few digitization scatters (0.3°, 0.003, 5 rad/s).
-    for table in [&coulomb, &bilinear] {
-        for ((quantity, regime), (rms, _, _)) in table.iter() {
-            if *regime != "sliding" {
-                continue;
-            }
-            let bound = match quantity.as_str() {
-                "rebound_angle_centroid" | "rebound_angle_contact_point" => 3.0,
-                "tangential_cor_centroid" => 0.03,
-                "spin_magnitude" => 60.0,
-                _ => unreachable!(),
+/// Coulomb sliding is common to the model and every source: deviations there
+/// stay within the scatter bounds, for every quantity of every dataset.
+#[test]
+fn where_the_model_slides_it_follows_every_dataset() {
+    let scatter = digitization_scatter();
+    for d in validation::datasets().expect("data") {
+        for quantity in d.quantities() {
+            let dev = deviation(&d, 0.0, f64::NEG_INFINITY, quantity, "sliding");
+            let bound = if d.key == "kharaz2001" {
+                10.0 * match quantity {
+                    Quantity::ReboundAngleCentroid | Quantity::ReboundAngleContactPoint => 0.3,
+                    Quantity::CentroidRatio => 0.003,
+                    Quantity::SpinMagnitude => 5.0,
+                    other => panic!("{other:?} is not a Kharaz quantity"),
+                }
+            } else {
+                3.0 * scatter * quantity_span(&d, quantity)
             };
-            assert!(*rms < bound, "{quantity} sliding RMS {rms} ≥ {bound}");
+            assert!(
+                dev.rms() < bound,
+                "{} {}: sliding RMS {} ≥ {bound} over {} points",
+                d.key,
+                quantity.name(),
+                dev.rms(),
+                dev.count
+            );
         }
     }
-    // In the sticking/restitution regime tangential restitution must do better than
-    // Coulomb friction for V_t/v_t (the paper's claim), and the fitted e_t must be a
-    // proper coefficient.
-    let stick = coulomb
-        .iter()
-        .find(|((q, r), _)| q == "tangential_cor_centroid" && *r == "sticking")
-        .map(|(_, v)| v.0);
-    let restitution = bilinear
-        .iter()
-        .find(|((q, r), _)| q == "tangential_cor_centroid" && *r == "restitution")
-        .map(|(_, v)| v.0);
-    if let (Some(stick), Some(restitution)) = (stick, restitution) {
+}
+
+/// Kharaz: near-normal incidence the measured `V_t/v_t` lies above what the
+/// model gives for any `e_t ≥ 0` (`1 − (1 + e_t)/3.5 ≤ 0.714`): the contact
+/// point does not reverse there. Fitted with those points, `e_t` is small;
+/// without them it rises towards the 0.3–0.4 the literature reports, and the
+/// restitution regime's rebound angles and spin improve on Coulomb sticking.
+#[test]
+fn kharaz_tangential_restitution_and_where_the_model_cannot_follow() {
+    let d = validation::kharaz().expect("data");
+    let near_normal: Vec<f64> = d
+        .of(Quantity::CentroidRatio)
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p.x > 0.0 && p.x < 4.0)
+        .map(|p| p.value)
+        .collect();
+    assert!(!near_normal.is_empty());
+    assert!(
+        near_normal.iter().all(|&v| v > 1.0 - 1.0 / 3.5),
+        "{near_normal:?}"
+    );
+
+    let all = d.fit_et(f64::NEG_INFINITY);
+    let above_5 = d.fit_et(5.0);
+    assert!((0.0..0.15).contains(&all), "e_t fitted to all incidences: {all}");
+    assert!((0.2..0.35).contains(&above_5), "e_t fitted at ≥ 5°: {above_5}");
+    for quantity in [Quantity::ReboundAngleCentroid, Quantity::SpinMagnitude] {
+        let coulomb = overall(&d, 0.0, 5.0, quantity).rms();
+        let bilinear = overall(&d, above_5, 5.0, quantity).rms();
         assert!(
-            restitution < stick,
-            "e_t does not improve V_t/v_t: {restitution} vs {stick}"
+            bilinear < 0.7 * coulomb,
+            "{}: e_t = {above_5} gives {bilinear}, Coulomb {coulomb}",
+            quantity.name()
         );
     }
-    assert!((0.0..=1.0).contains(&et));
-    assert!(et_above_5 > et, "near-normal points pull e_t down");
+}
+
+/// Test 5 (steel, `e = 1`): below the switch the DEM contact point reverses
+/// with `V_ct ≈ −0.79 v_ct`, which Coulomb sticking (`V_ct = 0`) misses by up
+/// to 2.8 and the bilinear model with the fitted `e_t` follows, over all
+/// points, to within five digitization scatters.
+#[test]
+fn chung_ooi_test5_is_followed_by_tangential_restitution() {
+    let d = validation::chung_ooi_test5().expect("data");
+    let et = d.fit_et(f64::NEG_INFINITY);
+    assert!((0.75..0.83).contains(&et), "fitted e_t = {et}");
+    let scatter = digitization_scatter();
+    for quantity in [Quantity::RecoilOverFriction, Quantity::SpinOverFriction] {
+        let coulomb = overall(&d, 0.0, f64::NEG_INFINITY, quantity);
+        let bilinear = overall(&d, et, f64::NEG_INFINITY, quantity);
+        let bound = 5.0 * scatter * quantity_span(&d, quantity);
+        assert!(coulomb.rms() > 1.0, "{}: Coulomb {coulomb:?}", quantity.name());
+        assert!(
+            bilinear.rms() < bound,
+            "{}: {bilinear:?} ≥ {bound}",
+            quantity.name()
+        );
+    }
+}
+
+/// Tests 4 and 6: in the restitution regime the DEM curves are shaped by the
+/// contact's tangential compliance, which no single `e_t` reproduces: Test 6's
+/// β is positive just past the switch (`f/μ_c` of 1–2.5) and negative beyond
+/// (no reversal), so the fitted `e_t` stays near zero and the deviations stay
+/// many scatters wide. Asserted so that a change that hides this is noticed.
+#[test]
+fn chung_ooi_tests_4_and_6_show_what_one_e_t_cannot_follow() {
+    let scatter = digitization_scatter();
+    let test6 = validation::chung_ooi_test6().expect("data");
+    let et6 = test6.fit_et(f64::NEG_INFINITY);
+    assert!(et6.abs() < 0.1, "Test 6 fitted e_t = {et6}");
+    let beta: Vec<&Point> = test6.of(Quantity::Beta).flat_map(|s| s.points.iter()).collect();
+    assert!(beta.iter().any(|p| p.x > 1.1 && p.x < 2.5 && p.value > 0.05));
+    assert!(beta.iter().any(|p| p.x > 5.0 && p.value < -0.1));
+    let dev = deviation(&test6, et6, f64::NEG_INFINITY, Quantity::Beta, "restitution");
+    assert!(
+        dev.rms() > 10.0 * scatter * quantity_span(&test6, Quantity::Beta),
+        "{dev:?}"
+    );
+
+    let test4 = validation::chung_ooi_test4().expect("data");
+    let et4 = test4.fit_et(f64::NEG_INFINITY);
+    assert!((0.0..0.2).contains(&et4), "Test 4 fitted e_t = {et4}");
+    let coulomb = deviation(
+        &test4,
+        0.0,
+        f64::NEG_INFINITY,
+        Quantity::SpinMagnitude,
+        "restitution",
+    );
+    let bilinear = deviation(
+        &test4,
+        et4,
+        f64::NEG_INFINITY,
+        Quantity::SpinMagnitude,
+        "restitution",
+    );
+    assert!(bilinear.rms() < coulomb.rms(), "{bilinear:?} vs {coulomb:?}");
 }

@@ -11,7 +11,7 @@ pub mod extract;
 pub mod fits;
 pub mod impacts;
 pub mod problem;
-mod svg;
+pub mod svg;
 pub mod sweeps;
 
 use std::sync::Arc;

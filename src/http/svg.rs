@@ -1,6 +1,8 @@
-//! The SVG rendering of a sweep (plotters' SVG backend): the first output
-//! against the first axis, one series per combination of the other axes'
-//! values (product sweeps), points without an answer leaving a gap.
+//! SVG plots (plotters' SVG backend). A sweep draws its first output against
+//! its first axis, one series per combination of the other axes' values
+//! (product sweeps), points without an answer leaving a gap. [`Figure`] is the
+//! general plot both sweeps and the validation report (model curves over
+//! measured points, `docs/validation.md`) draw with.
 
 use axum::http::StatusCode;
 use plotters::prelude::*;
@@ -158,46 +160,132 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// Draws the series; plotters' errors cannot occur when writing into a String,
-/// and any that did would leave a partial drawing rather than fail the request.
+/// One labelled line, drawn as segments (a gap between segments).
+#[derive(Debug, Clone, Default)]
+pub struct Curve {
+    /// Legend text (none when empty).
+    pub label: String,
+    /// The segments, each a polyline.
+    pub segments: Vec<Vec<(f64, f64)>>,
+}
+
+/// One labelled set of points, drawn as markers.
+#[derive(Debug, Clone, Default)]
+pub struct Markers {
+    /// Legend text.
+    pub label: String,
+    /// The points.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A plot: lines (model curves, sweep series) and markers (measured points),
+/// on linear axes fitted to everything drawn.
+#[derive(Debug, Clone, Default)]
+pub struct Figure {
+    /// Caption.
+    pub title: String,
+    /// Horizontal axis name.
+    pub x_name: String,
+    /// Vertical axis name.
+    pub y_name: String,
+    /// Lines, coloured in order.
+    pub curves: Vec<Curve>,
+    /// Point sets, coloured after the lines, each with its own marker shape.
+    pub markers: Vec<Markers>,
+}
+
 fn draw(x_name: &str, y_name: &str, series: &[Vec<Vec<(f64, f64)>>], labels: &[String]) -> String {
-    let all = || series.iter().flatten().flatten();
-    let (x0, x1) = range(all().map(|p| p.0));
-    let (y0, y1) = range(all().map(|p| p.1));
-    let mut text = String::new();
-    {
-        let root = SVGBackend::with_string(&mut text, (900, 600)).into_drawing_area();
-        let _ = root.fill(&WHITE);
-        let chart = ChartBuilder::on(&root)
-            .caption(format!("{y_name} against {x_name}"), ("sans-serif", 20))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(72)
-            .build_cartesian_2d(x0..x1, y0..y1);
-        if let Ok(mut chart) = chart {
-            let _ = chart.configure_mesh().x_desc(x_name).y_desc(y_name).draw();
-            for (i, (segments, label)) in series.iter().zip(labels).enumerate() {
-                let (r, g, b) = TABLEAU[i % TABLEAU.len()];
-                let color = RGBColor(r, g, b);
-                for (j, segment) in segments.iter().enumerate() {
-                    let line =
-                        chart.draw_series(LineSeries::new(segment.iter().copied(), color.stroke_width(2)));
-                    if let (Ok(line), 0, false) = (line, j, label.is_empty()) {
-                        line.label(label.clone()).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                        });
+    Figure {
+        title: format!("{y_name} against {x_name}"),
+        x_name: x_name.to_owned(),
+        y_name: y_name.to_owned(),
+        curves: series
+            .iter()
+            .zip(labels)
+            .map(|(segments, label)| Curve {
+                label: label.clone(),
+                segments: segments.clone(),
+            })
+            .collect(),
+        markers: Vec::new(),
+    }
+    .render()
+}
+
+impl Figure {
+    /// The figure as an SVG document. plotters' errors cannot occur when
+    /// writing into a String, and any that did would leave a partial drawing
+    /// rather than fail.
+    pub fn render(&self) -> String {
+        let lines = self.curves.iter().flat_map(|c| c.segments.iter().flatten());
+        let points = self.markers.iter().flat_map(|m| m.points.iter());
+        let all = || lines.clone().chain(points.clone());
+        let (x0, x1) = range(all().map(|p| p.0));
+        let (y0, y1) = range(all().map(|p| p.1));
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, (900, 600)).into_drawing_area();
+            let _ = root.fill(&WHITE);
+            let chart = ChartBuilder::on(&root)
+                .caption(&self.title, ("sans-serif", 20))
+                .margin(16)
+                .x_label_area_size(48)
+                .y_label_area_size(72)
+                .build_cartesian_2d(x0..x1, y0..y1);
+            if let Ok(mut chart) = chart {
+                let _ = chart
+                    .configure_mesh()
+                    .x_desc(&self.x_name)
+                    .y_desc(&self.y_name)
+                    .draw();
+                let color = |i: usize| {
+                    let (r, g, b) = TABLEAU[i % TABLEAU.len()];
+                    RGBColor(r, g, b)
+                };
+                for (i, curve) in self.curves.iter().enumerate() {
+                    let color = color(i);
+                    for (j, segment) in curve.segments.iter().enumerate() {
+                        let line = chart
+                            .draw_series(LineSeries::new(segment.iter().copied(), color.stroke_width(2)));
+                        if let (Ok(line), 0, false) = (line, j, curve.label.is_empty()) {
+                            line.label(curve.label.clone()).legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                            });
+                        }
                     }
                 }
+                for (i, set) in self.markers.iter().enumerate() {
+                    let color = color(self.curves.len() + i);
+                    let drawn = match i % 3 {
+                        0 => chart.draw_series(set.points.iter().map(|&p| Circle::new(p, 4, color.filled()))),
+                        1 => chart.draw_series(
+                            set.points
+                                .iter()
+                                .map(|&p| TriangleMarker::new(p, 5, color.filled())),
+                        ),
+                        _ => chart.draw_series(
+                            set.points
+                                .iter()
+                                .map(|&p| Cross::new(p, 4, color.stroke_width(2))),
+                        ),
+                    };
+                    if let Ok(drawn) = drawn {
+                        drawn
+                            .label(set.label.clone())
+                            .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+                    }
+                }
+                let labelled = self.curves.iter().any(|c| !c.label.is_empty()) || !self.markers.is_empty();
+                if labelled {
+                    let _ = chart
+                        .configure_series_labels()
+                        .background_style(WHITE.mix(0.8))
+                        .border_style(BLACK)
+                        .draw();
+                }
             }
-            if labels.iter().any(|l| !l.is_empty()) {
-                let _ = chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK)
-                    .draw();
-            }
+            let _ = root.present();
         }
-        let _ = root.present();
+        text
     }
-    text
 }

@@ -4,6 +4,7 @@
 pub mod accuracy;
 pub mod reference;
 pub mod server;
+pub mod validation;
 
 /// A small deterministic generator (SplitMix64) so failures reproduce.
 pub struct Rng(u64);
