@@ -58,6 +58,19 @@ fn variants(d: &Dataset) -> Vec<Variant> {
             et,
             min_x: 5.0,
         });
+        if let Ok(fit) = restitution::fit::tangential(&validation::kharaz_observations(d, 0.0))
+            && let (Some(f), Some(et)) = (fit.friction, fit.tangential_restitution)
+        {
+            v.push(Variant {
+                label: format!(
+                    "(d) bilinear model, e_t = {:.3} ± {:.3} from the coefficient fit (`POST /v1/fits/tangential`: \
+                     V_ct regressed on v_ct, Eq 20), which also gives f = {:.4} ± {:.4}",
+                    et.value, et.standard_error, f.value, f.standard_error
+                ),
+                et: et.value,
+                min_x: f64::NEG_INFINITY,
+            });
+        }
     }
     v
 }

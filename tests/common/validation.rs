@@ -562,6 +562,38 @@ impl Deviation {
     }
 }
 
+/// Kharaz's `V_t/v_t` points as observations for the coefficient fit
+/// (`restitution::fit::tangential`, behind `POST /v1/fits/tangential`), at
+/// incidences `≥ min_deg`: initial velocities from the incidence, `V_n = −e v_n`
+/// with the experiment's `e` (not measured per point in this file),
+/// `V_t = (V_t/v_t) v_t`, and `Ω` from the moment equation about the centre,
+/// `I (Ω − ω) = −m R (V_t − v_t)`.
+pub fn kharaz_observations(d: &Dataset, min_deg: f64) -> Vec<restitution::fit::Observation> {
+    let mass = 1.0;
+    let inertia = 0.4 * mass * d.radius * d.radius;
+    let Ok(body) = restitution::Body::new(mass, inertia) else {
+        return Vec::new();
+    };
+    d.of(Quantity::CentroidRatio)
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p.x >= min_deg && p.x > 0.0)
+        .map(|p| {
+            let initial = d.velocity(d.drive(Quantity::CentroidRatio).0, p.x);
+            let vt = p.value * initial.tangential;
+            restitution::fit::Observation {
+                body,
+                contact: Contact::central(d.radius),
+                initial,
+                r#final: PlanarVelocity {
+                    normal: -d.restitution * initial.normal,
+                    tangential: vt,
+                    angular: initial.angular - mass * d.radius * (vt - initial.tangential) / inertia,
+                },
+            }
+        })
+        .collect()
+}
+
 /// Every dataset compared.
 pub fn datasets() -> Result<Vec<Dataset>, String> {
     Ok(vec![
