@@ -11,6 +11,7 @@
 //! cargo bench --bench load                    # concurrency 1, 16, 64; 5 s (≤ 500,000 requests) per cell
 //! cargo bench --bench load -- --smoke         # CI: 0.5 s per cell, concurrency 1 and 16
 //! cargo bench --bench load -- --soak SECONDS  # mixed traffic, resident memory over time
+//! cargo bench --bench load -- --precision     # the service with "precision": "fast" against "exact"
 //! ```
 //! Every run is bounded in requests and seconds and targets loopback only.
 
@@ -71,7 +72,56 @@ fn main() {
         return;
     }
     let smoke = args.iter().any(|a| a == "--smoke");
+    if args.iter().any(|a| a == "--precision") {
+        compare_precision(smoke);
+        return;
+    }
     compare(smoke);
+}
+
+/// The request with `"precision"` set (the field is top-level on every impact and sweep request).
+fn with_precision(body: &str, precision: &str) -> Bytes {
+    let rest = body.strip_prefix('{').expect("a JSON object");
+    Bytes::from(format!(r#"{{"precision": "{precision}", {rest}"#))
+}
+
+/// The service answering each endpoint, and two sweeps, in `fast` and in
+/// `exact` precision: what choosing `exact` costs a caller over HTTP.
+fn compare_precision(smoke: bool) {
+    let (levels, duration, max): (&[usize], _, _) = if smoke {
+        (&[1, 16], Duration::from_millis(500), 50_000)
+    } else {
+        (&[1, 16], Duration::from_secs(5), 500_000)
+    };
+    let runtime = client_runtime();
+    let service = product();
+    println!("| request | concurrency | fast req/s | exact req/s | exact/fast time | fast p50 ms | exact p50 ms |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let sweeps = [
+        ("/v1/sweeps", "application/json", SMALL_SWEEP, "200-point JSON sweep"),
+        ("/v1/sweeps", "text/csv", CSV_SWEEP, "20,000-point CSV sweep"),
+    ];
+    let requests = ENDPOINTS
+        .iter()
+        .map(|&(path, body)| (path, "application/json", body, path))
+        .chain(sweeps);
+    let mut failures = 0;
+    for (path, accept, body, name) in requests {
+        for &c in levels {
+            let mut cells = Vec::new();
+            for precision in ["fast", "exact"] {
+                let bodies = vec![(path, accept, with_precision(body, precision))];
+                drive(&runtime, service.addr, bodies.clone(), c, Duration::from_millis(100), 10_000);
+                let cell = drive(&runtime, service.addr, bodies, c, duration, max);
+                failures += cell.failures;
+                cells.push(cell);
+            }
+            let (fast, exact) = (cells[0].rps(), cells[1].rps());
+            let (f50, e50) = (cells[0].percentile(0.5), cells[1].percentile(0.5));
+            println!("| {name} | {c} | {fast:.0} | {exact:.0} | {:.2} | {f50:.3} | {e50:.3} |", fast / exact);
+        }
+    }
+    assert_eq!(failures, 0, "every request answered 200");
 }
 
 fn free_port() -> u16 {
