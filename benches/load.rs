@@ -95,10 +95,17 @@ fn compare_precision(smoke: bool) {
     };
     let runtime = client_runtime();
     let service = product();
-    println!("| request | concurrency | fast req/s | exact req/s | exact/fast time | fast p50 ms | exact p50 ms |");
+    println!(
+        "| request | concurrency | fast req/s | exact req/s | exact/fast time | fast p50 ms | exact p50 ms |"
+    );
     println!("|---|---:|---:|---:|---:|---:|---:|");
     let sweeps = [
-        ("/v1/sweeps", "application/json", SMALL_SWEEP, "200-point JSON sweep"),
+        (
+            "/v1/sweeps",
+            "application/json",
+            SMALL_SWEEP,
+            "200-point JSON sweep",
+        ),
         ("/v1/sweeps", "text/csv", CSV_SWEEP, "20,000-point CSV sweep"),
     ];
     let requests = ENDPOINTS
@@ -111,14 +118,24 @@ fn compare_precision(smoke: bool) {
             let mut cells = Vec::new();
             for precision in ["fast", "exact"] {
                 let bodies = vec![(path, accept, with_precision(body, precision))];
-                drive(&runtime, service.addr, bodies.clone(), c, Duration::from_millis(100), 10_000);
+                drive(
+                    &runtime,
+                    service.addr,
+                    bodies.clone(),
+                    c,
+                    Duration::from_millis(100),
+                    10_000,
+                );
                 let cell = drive(&runtime, service.addr, bodies, c, duration, max);
                 failures += cell.failures;
                 cells.push(cell);
             }
             let (fast, exact) = (cells[0].rps(), cells[1].rps());
             let (f50, e50) = (cells[0].percentile(0.5), cells[1].percentile(0.5));
-            println!("| {name} | {c} | {fast:.0} | {exact:.0} | {:.2} | {f50:.3} | {e50:.3} |", fast / exact);
+            println!(
+                "| {name} | {c} | {fast:.0} | {exact:.0} | {:.2} | {f50:.3} | {e50:.3} |",
+                fast / exact
+            );
         }
     }
     assert_eq!(failures, 0, "every request answered 200");
