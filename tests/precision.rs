@@ -557,8 +557,9 @@ fn exact_zeros_are_positive_zero() {
     assert_eq!(o.contact_velocity.r#final.tangential.to_bits(), 0.0f64.to_bits());
     assert_eq!(o.contact_velocity.r#final.normal.to_bits(), 0.0f64.to_bits());
     assert_eq!(o.final_velocity.normal.to_bits(), 0.0f64.to_bits());
-    // No bound around a cancelled value excludes zero: the rationals decide it.
-    assert_eq!(stage, Stage::Rational);
+    // Every value here is formed exactly (error-free sums and products, Δn = q_n
+    // for a central contact), so the cancellation is decided in double-double.
+    assert_eq!(stage, Stage::DoubleDouble);
     // Without the cancellation (e > 0) the structural zero V_ct = 0 is certified in double-double.
     let point = PlanarPoint {
         restitution: 0.5,
@@ -570,6 +571,27 @@ fn exact_zeros_are_positive_zero() {
         0.0f64.to_bits()
     );
     assert_eq!(stage, Stage::DoubleDouble);
+
+    // Non-central (S = k² + d_c² + d_d² = 1): Ω = ω + (d_c q_n + d_d q_t)/S cancels
+    // to exactly 0 through a quotient, whose bound cannot exclude zero: the
+    // rationals decide it.
+    let case = Case {
+        inp: Inputs {
+            m: 1.0,
+            inertia: 0.5,
+            dc: 0.5,
+            dd: 0.5,
+            vn: -1.0,
+            vt: 0.5,
+            w: -1.5,
+        },
+        e: 0.0,
+        law: Law::Tangential(10.0, 0.0),
+    };
+    let (law, point) = case.point();
+    let (o, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
+    assert_eq!(o.unwrap().final_velocity.angular.to_bits(), 0.0f64.to_bits());
+    assert_eq!(stage, Stage::Rational);
 }
 
 #[test]

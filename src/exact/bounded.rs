@@ -41,9 +41,12 @@ const SAFE_DIVISION_MIN: f64 = f64::from_bits((1023 - 900) << 52);
 const EXACT_PRODUCT_MIN: f64 = f64::MIN_POSITIVE * (1u64 << 53) as f64;
 
 /// A double-double value with an error bound: the exact value lies in
-/// `[hi + lo − err, hi + lo + err]`.
+/// `[hi + lo − err, hi + lo + err]`. With `TRACK`, sums and products of
+/// error-free values are formed by TwoSum and TwoProd alone and keep a zero
+/// bound when exact (dearer, but a cancelled zero or an exact rounding tie is
+/// then still decided); without it, they use the cheaper double-word algorithms.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Bounded {
+pub(crate) struct Bounded<const TRACK: bool = false> {
     hi: f64,
     lo: f64,
     err: f64,
@@ -71,7 +74,7 @@ fn two_prod(a: f64, b: f64) -> (f64, f64) {
     (p, a.mul_add(b, -p))
 }
 
-impl Bounded {
+impl<const TRACK: bool> Bounded<TRACK> {
     /// An f64, exactly.
     #[inline]
     pub(crate) fn exact(x: f64) -> Self {
@@ -83,7 +86,7 @@ impl Bounded {
     }
 
     /// A value no good for anything: every decision on it is uncertain.
-    const UNKNOWN: Bounded = Bounded {
+    const UNKNOWN: Self = Self {
         hi: f64::NAN,
         lo: f64::NAN,
         err: f64::INFINITY,
@@ -117,6 +120,9 @@ impl Bounded {
             let (hi, lo) = two_sum(self.hi, o.hi);
             return Bounded { hi, lo, err: 0.0 };
         }
+        if TRACK && self.err == 0.0 && o.err == 0.0 {
+            return self.add_exact_words(o);
+        }
         let (hi, lo) = if o.lo == 0.0 || self.lo == 0.0 {
             // DWPlusFP (relative error ≤ 2u²), with the single word as the f64.
             let (x, y) = if o.lo == 0.0 { (self, o.hi) } else { (o, self.hi) };
@@ -132,6 +138,24 @@ impl Bounded {
         };
         // TINY covers the low words' roundings where they fall below the normal range.
         let err = (self.err + o.err + 4.0 * U2 * (hi.abs() + lo.abs())) * GROW + TINY;
+        Bounded { hi, lo, err }
+    }
+
+    /// The sum of two error-free values by TwoSums only: the four words sum
+    /// exactly to `hi + lo + c_e + w_e`, so the bound is `|c_e| + |w_e|`, and zero
+    /// (an exact result, which keeps a tie decidable) when both vanish.
+    fn add_exact_words(&self, o: &Self) -> Self {
+        let (sh, sl) = two_sum(self.hi, o.hi);
+        let (th, tl) = two_sum(self.lo, o.lo);
+        let (c, ce) = two_sum(sl, th);
+        let (vh, vl) = two_sum(sh, c);
+        let (w, we) = two_sum(tl, vl);
+        let (hi, lo) = two_sum(vh, w);
+        let err = if ce == 0.0 && we == 0.0 {
+            0.0
+        } else {
+            (ce.abs() + we.abs()) * GROW
+        };
         Bounded { hi, lo, err }
     }
 
@@ -178,10 +202,34 @@ impl Bounded {
     /// is used).
     #[inline]
     fn times_double(&self, y: f64) -> Self {
+        if TRACK && self.err == 0.0 {
+            return self.times_double_exact_words(y);
+        }
         let (ch, cl1) = two_prod(self.hi, y);
         let cl3 = self.lo.mul_add(y, cl1);
         let (hi, lo) = fast_two_sum(ch, cl3);
         let err = (self.err * y.abs() + 4.0 * U2 * (hi.abs() + lo.abs()) + TINY) * GROW;
+        Bounded { hi, lo, err }
+    }
+
+    /// The product of an error-free value and an f64 by TwoProds and TwoSums:
+    /// `(x_h + x_l) y = hi + lo + s_e + p_e` exactly (unless a product's low
+    /// part underflows, which [`TINY`] covers), so the bound is `|s_e| + |p_e|`,
+    /// and zero when both vanish.
+    fn times_double_exact_words(&self, y: f64) -> Self {
+        let (ch, cl1) = two_prod(self.hi, y);
+        let (p, pe) = two_prod(self.lo, y);
+        let (s, se) = two_sum(p, cl1);
+        let (hi, lo) = two_sum(ch, s);
+        // A product below 2⁻⁹⁶⁹ (or rounded to zero) may have lost bits.
+        let underflow = y != 0.0
+            && ((self.hi != 0.0 && ch.abs() < EXACT_PRODUCT_MIN)
+                || (self.lo != 0.0 && p.abs() < EXACT_PRODUCT_MIN));
+        let err = if se == 0.0 && pe == 0.0 && !underflow {
+            0.0
+        } else {
+            (se.abs() + pe.abs()) * GROW + TINY
+        };
         Bounded { hi, lo, err }
     }
 
@@ -195,7 +243,7 @@ impl Bounded {
     pub(crate) fn div(&self, o: &Self) -> Self {
         let y_low = (o.hi.abs() - o.lo.abs()) * (1.0 - 4.0 * U) - o.err;
         if y_low.is_nan() || y_low <= 0.0 || !o.hi.is_finite() {
-            return Bounded::UNKNOWN;
+            return Self::UNKNOWN;
         }
         if self.is_exact_zero() {
             return Bounded::exact(0.0);
@@ -283,6 +331,9 @@ impl Bounded {
 mod tests {
     use super::*;
 
+    type Bounded = super::Bounded<false>;
+    type Tracked = super::Bounded<true>;
+
     #[test]
     fn sums_and_products_of_doubles_are_exact() {
         let a = Bounded::exact(0.1);
@@ -290,8 +341,22 @@ mod tests {
         let s = a.add(&b);
         assert_eq!(s.err, 0.0);
         assert_eq!(s.round(), Some(0.30000000000000004));
-        // An exact cancellation of double-double values is left to the rationals.
+        // An exact cancellation of double-double values is left to the rationals
+        // in the untracked pass, and decided in the tracked one.
         assert_eq!(s.sub(&s).sign(), None);
+        let t = Tracked::exact(0.1).add(&Tracked::exact(0.2));
+        assert_eq!(t.sub(&t).sign(), Some(Ordering::Equal));
+        assert_eq!(t.sub(&t).round(), Some(0.0));
+        // A rounding tie formed exactly: (1 + 0.93)·1 lies halfway between two doubles.
+        let tie = Tracked::exact(1.0)
+            .add(&Tracked::exact(0.93))
+            .mul(&Tracked::exact(1.0));
+        assert_eq!(tie.err, 0.0);
+        assert_eq!(tie.round(), Some(1.0 + 0.93));
+        let untracked = Bounded::exact(1.0)
+            .add(&Bounded::exact(0.93))
+            .mul(&Bounded::exact(1.0));
+        assert_eq!(untracked.round(), None, "{untracked:?}");
         assert_eq!(a.sub(&a).sign(), Some(Ordering::Equal));
         let p = a.mul(&b);
         assert_eq!(p.err, 0.0);

@@ -1,10 +1,11 @@
 //! The arithmetic the exact model is written in, implemented twice: by
-//! [`Bounded`] double-doubles (fast, may be undecided) and by big rationals
-//! (slow, always decided).
+//! [`Bounded`] double-doubles (fast, may be undecided) and by exact
+//! [`Fraction`]s of big integers (slow, always decided).
 
 use std::cmp::Ordering;
 
-use num_bigint::BigUint;
+use num_bigint::{BigInt, BigUint};
+#[cfg(test)]
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
@@ -28,76 +29,141 @@ pub(crate) trait Field: Clone {
     fn approx(&self) -> f64;
 }
 
-impl Field for Bounded {
+impl<const TRACK: bool> Field for Bounded<TRACK> {
     #[inline]
     fn of(x: f64) -> Self {
-        Bounded::exact(x)
+        Self::exact(x)
     }
     #[inline]
     fn add(&self, o: &Self) -> Self {
-        Bounded::add(self, o)
+        Self::add(self, o)
     }
     #[inline]
     fn sub(&self, o: &Self) -> Self {
-        Bounded::sub(self, o)
+        Self::sub(self, o)
     }
     #[inline]
     fn mul(&self, o: &Self) -> Self {
-        Bounded::mul(self, o)
+        Self::mul(self, o)
     }
     #[inline]
     fn div(&self, o: &Self) -> Self {
-        Bounded::div(self, o)
+        Self::div(self, o)
     }
     #[inline]
     fn neg(&self) -> Self {
-        Bounded::neg(self)
+        Self::neg(self)
     }
     #[inline]
     fn sign(&self) -> Option<Ordering> {
-        Bounded::sign(self)
+        Self::sign(self)
     }
     #[inline]
     fn round(&self) -> Option<f64> {
-        Bounded::round(self)
+        Self::round(self)
     }
     fn approx(&self) -> f64 {
-        Bounded::approx(self)
+        Self::approx(self)
     }
 }
 
-impl Field for BigRational {
+/// An exact rational `num / den` (`den > 0`), kept unreduced but for common
+/// factors of two: every input is dyadic, so dividing out powers of two keeps
+/// most values small, and no gcd is ever computed (normalising by gcd after
+/// every operation, as `BigRational` does, cost ten times more here).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Fraction {
+    num: BigInt,
+    den: BigInt,
+}
+
+impl Fraction {
+    fn new(num: BigInt, den: BigInt) -> Self {
+        if num.is_zero() {
+            return Fraction {
+                num,
+                den: BigInt::one(),
+            };
+        }
+        let twos = num
+            .trailing_zeros()
+            .unwrap_or(0)
+            .min(den.trailing_zeros().unwrap_or(0));
+        if twos == 0 {
+            Fraction { num, den }
+        } else {
+            Fraction {
+                num: num >> twos,
+                den: den >> twos,
+            }
+        }
+    }
+}
+
+impl Field for Fraction {
     fn of(x: f64) -> Self {
-        // Every finite f64 is a dyadic rational; the model only sees finite inputs.
-        BigRational::from_float(x).unwrap_or_else(BigRational::zero)
+        // Every finite f64 is m·2^k; the model only sees finite inputs.
+        let bits = x.to_bits();
+        let exponent = ((bits >> 52) & 0x7ff) as i64;
+        let fraction = bits & ((1u64 << 52) - 1);
+        let (mantissa, k) = if exponent == 0 {
+            (fraction, -1074)
+        } else {
+            (fraction | (1u64 << 52), exponent - 1075)
+        };
+        let signed = if x.is_sign_negative() {
+            -BigInt::from(mantissa)
+        } else {
+            BigInt::from(mantissa)
+        };
+        if !x.is_finite() {
+            return Fraction::new(BigInt::zero(), BigInt::one());
+        }
+        if k >= 0 {
+            Fraction::new(signed << (k as u64), BigInt::one())
+        } else {
+            Fraction::new(signed, BigInt::one() << ((-k) as u64))
+        }
     }
     fn add(&self, o: &Self) -> Self {
-        self + o
+        if self.den == o.den {
+            Fraction::new(&self.num + &o.num, self.den.clone())
+        } else {
+            Fraction::new(&self.num * &o.den + &o.num * &self.den, &self.den * &o.den)
+        }
     }
     fn sub(&self, o: &Self) -> Self {
-        self - o
+        self.add(&o.neg())
     }
     fn mul(&self, o: &Self) -> Self {
-        self * o
+        Fraction::new(&self.num * &o.num, &self.den * &o.den)
     }
     fn div(&self, o: &Self) -> Self {
-        if o.is_zero() {
+        if o.num.is_zero() {
             // Unreachable by construction (see the trait); never panic in a server.
-            return BigRational::zero();
+            return Fraction::new(BigInt::zero(), BigInt::one());
         }
-        self / o
+        let (num, den) = (&self.num * &o.den, &self.den * &o.num);
+        if den.is_negative() {
+            Fraction::new(-num, -den)
+        } else {
+            Fraction::new(num, den)
+        }
     }
     fn neg(&self) -> Self {
-        -self
+        Fraction {
+            num: -&self.num,
+            den: self.den.clone(),
+        }
     }
     fn sign(&self) -> Option<Ordering> {
-        Some(self.cmp(&BigRational::zero()))
+        Some(self.num.sign().cmp(&num_bigint::Sign::NoSign))
     }
     fn round(&self) -> Option<f64> {
-        Some(round_rational(self))
+        Some(round_quotient(&self.num, &self.den))
     }
     fn approx(&self) -> f64 {
-        round_rational(self)
+        round_quotient(&self.num, &self.den)
     }
 }
 
@@ -112,13 +178,20 @@ fn pow2(k: i64) -> f64 {
 
 /// The rational correctly rounded to the nearest f64 (ties to even), `±∞` when
 /// it rounds beyond the largest finite double, `+0.0` for zero.
+#[cfg(test)]
 pub(crate) fn round_rational(x: &BigRational) -> f64 {
-    if x.is_zero() {
+    round_quotient(x.numer(), x.denom())
+}
+
+/// `num / den` (`den ≠ 0`, any common factors) correctly rounded to the nearest
+/// f64 (ties to even), `±∞` beyond the largest finite double, `+0.0` for zero.
+pub(crate) fn round_quotient(num: &BigInt, den: &BigInt) -> f64 {
+    if num.is_zero() {
         return 0.0;
     }
-    let negative = x.is_negative();
-    let n: BigUint = x.numer().magnitude().clone();
-    let d: BigUint = x.denom().magnitude().clone();
+    let negative = num.is_negative() != den.is_negative();
+    let n: BigUint = num.magnitude().clone();
+    let d: BigUint = den.magnitude().clone();
     // Find k with 2^52 ≤ n / (d 2^k) < 2^53, or k = −1074 for subnormals.
     let mut k = n.bits() as i64 - d.bits() as i64 - 53;
     let (mut q, mut r, mut den);
@@ -169,6 +242,47 @@ mod tests {
 
     fn ratio(a: i64, b: i64) -> BigRational {
         BigRational::new(int(a), int(b))
+    }
+
+    fn as_ratio(f: &Fraction) -> BigRational {
+        BigRational::new(f.num.clone(), f.den.clone())
+    }
+
+    #[test]
+    fn fractions_agree_with_reduced_rationals() {
+        let values = [
+            0.1,
+            -0.93,
+            3.0,
+            1e-300,
+            -2.5e300,
+            5e-324,
+            0.0,
+            7.0 / 3.0,
+            -1.0,
+            1e15 + 0.5,
+        ];
+        let of = |x: f64| BigRational::from_float(x).unwrap();
+        for &a in &values {
+            let fa = Fraction::of(a);
+            assert_eq!(as_ratio(&fa), of(a), "{a}");
+            for &b in &values {
+                let fb = Fraction::of(b);
+                assert_eq!(as_ratio(&fa.add(&fb)), of(a) + of(b), "{a} + {b}");
+                assert_eq!(as_ratio(&fa.sub(&fb)), of(a) - of(b), "{a} - {b}");
+                assert_eq!(as_ratio(&fa.mul(&fb)), of(a) * of(b), "{a} * {b}");
+                if b != 0.0 {
+                    let q = fa.div(&fb);
+                    assert!(q.den.is_positive());
+                    assert_eq!(as_ratio(&q), of(a) / of(b), "{a} / {b}");
+                    assert_eq!(q.round(), Some(round_rational(&(of(a) / of(b)))), "{a} / {b}");
+                }
+                assert_eq!(
+                    fa.sub(&fb).sign(),
+                    Some(a.total_cmp(&b)).filter(|_| a != b).or(Some(Ordering::Equal))
+                );
+            }
+        }
     }
 
     #[test]

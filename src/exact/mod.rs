@@ -18,10 +18,8 @@ mod bounded;
 mod field;
 mod model;
 
-use num_rational::BigRational;
-
 use self::bounded::Bounded;
-use self::field::Field;
+use self::field::{Field, Fraction};
 use self::model::{Exact, Fail, PlanarLaw as Law};
 use crate::error::{ImpactError, Input, Result, finite, in_range};
 use crate::normal::{NormalImpact, PointMass};
@@ -60,22 +58,38 @@ pub enum Stage {
     Rational,
 }
 
-/// Runs `model` in double-double and, if that cannot decide, in rationals.
-fn adaptive<T>(model: impl Fn(bool) -> Exact<T>) -> (Result<T>, Stage) {
-    match model(false) {
-        Ok(v) => (Ok(v), Stage::DoubleDouble),
-        Err(Fail::Refused(e)) => (Err(e), Stage::DoubleDouble),
-        Err(Fail::Undecided) => match model(true) {
-            Ok(v) => (Ok(v), Stage::Rational),
-            Err(Fail::Refused(e)) => (Err(e), Stage::Rational),
-            // Rationals decide every sign and rounding; this arm cannot be reached.
-            Err(Fail::Undecided) => (
-                Err(ImpactError::OutputNotFinite {
-                    output: crate::error::Output::FinalNormalVelocity,
-                }),
-                Stage::Rational,
-            ),
-        },
+/// The arithmetic of one evaluation of the model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pass {
+    /// Double-double with the cheaper double-word algorithms.
+    DoubleDouble,
+    /// Double-double keeping exact sums and products exact (decides ties and
+    /// cancelled zeros formed without a quotient).
+    Tracked,
+    /// Exact fractions.
+    Rational,
+}
+
+/// Runs `model` in double-double; if that cannot decide, in double-double
+/// tracking exact operations; if that cannot either, in exact fractions.
+fn adaptive<T>(model: impl Fn(Pass) -> Exact<T>) -> (Result<T>, Stage) {
+    for pass in [Pass::DoubleDouble, Pass::Tracked] {
+        match model(pass) {
+            Ok(v) => return (Ok(v), Stage::DoubleDouble),
+            Err(Fail::Refused(e)) => return (Err(e), Stage::DoubleDouble),
+            Err(Fail::Undecided) => {}
+        }
+    }
+    match model(Pass::Rational) {
+        Ok(v) => (Ok(v), Stage::Rational),
+        Err(Fail::Refused(e)) => (Err(e), Stage::Rational),
+        // Rationals decide every sign and rounding; this arm cannot be reached.
+        Err(Fail::Undecided) => (
+            Err(ImpactError::OutputNotFinite {
+                output: crate::error::Output::FinalNormalVelocity,
+            }),
+            Stage::Rational,
+        ),
     }
 }
 
@@ -88,9 +102,9 @@ pub fn scene(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<P
             normal_contact_velocity: 0.0,
             ..
         }) => {
-            let exact = <BigRational as Field>::of(velocity.normal).add(
-                &<BigRational as Field>::of(contact.tangential_offset)
-                    .mul(&<BigRational as Field>::of(velocity.angular)),
+            let exact = <Fraction as Field>::of(velocity.normal).add(
+                &<Fraction as Field>::of(contact.tangential_offset)
+                    .mul(&<Fraction as Field>::of(velocity.angular)),
             );
             if exact.sign() == Some(std::cmp::Ordering::Less) {
                 Ok(PlanarScene::approaching_below_range(body, contact, velocity))
@@ -163,12 +177,10 @@ pub fn solve_planar_staged(
             Ok(v) => v,
             Err(e) => return (Err(e), Stage::DoubleDouble),
         };
-        return adaptive(|rational| {
-            if rational {
-                model::point_mass::<BigRational>(&v, outputs)
-            } else {
-                model::point_mass::<Bounded>(&v, outputs)
-            }
+        return adaptive(|pass| match pass {
+            Pass::DoubleDouble => model::point_mass::<Bounded>(&v, outputs),
+            Pass::Tracked => model::point_mass::<Bounded<true>>(&v, outputs),
+            Pass::Rational => model::point_mass::<Fraction>(&v, outputs),
         });
     }
     let prepared = Body::new(p.mass, p.inertia)
@@ -178,12 +190,10 @@ pub fn solve_planar_staged(
         Ok(v) => v,
         Err(e) => return (Err(e), Stage::DoubleDouble),
     };
-    adaptive(|rational| {
-        if rational {
-            model::planar::<BigRational>(&scene, e, law, outputs)
-        } else {
-            model::planar::<Bounded>(&scene, e, law, outputs)
-        }
+    adaptive(|pass| match pass {
+        Pass::DoubleDouble => model::planar::<Bounded>(&scene, e, law, outputs),
+        Pass::Tracked => model::planar::<Bounded<true>>(&scene, e, law, outputs),
+        Pass::Rational => model::planar::<Fraction>(&scene, e, law, outputs),
     })
 }
 
@@ -198,12 +208,10 @@ pub fn solve_torsional_staged(impact: &TorsionalImpact, energy: bool) -> (Result
         Ok(v) => v,
         Err(e) => return (Err(e), Stage::DoubleDouble),
     };
-    adaptive(|rational| {
-        if rational {
-            model::torsional::<BigRational>(&v, energy)
-        } else {
-            model::torsional::<Bounded>(&v, energy)
-        }
+    adaptive(|pass| match pass {
+        Pass::DoubleDouble => model::torsional::<Bounded>(&v, energy),
+        Pass::Tracked => model::torsional::<Bounded<true>>(&v, energy),
+        Pass::Rational => model::torsional::<Fraction>(&v, energy),
     })
 }
 
@@ -221,7 +229,7 @@ pub fn solve_planar_rational(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) 
     let body = Body::new(p.mass, p.inertia)?;
     let scene = scene(body, p.contact, p.velocity)?;
     let (e, exact_law) = planar_law(law, p)?;
-    match model::planar::<BigRational>(&scene, e, exact_law, outputs) {
+    match model::planar::<Fraction>(&scene, e, exact_law, outputs) {
         Ok(v) => Ok(v),
         Err(Fail::Refused(e)) => Err(e),
         // Rationals decide everything; kept total without a panic.
@@ -232,7 +240,7 @@ pub fn solve_planar_rational(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) 
 /// Solves one torsional impact in exact rationals only.
 pub fn solve_torsional_rational(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
     let v = impact.validate()?;
-    match model::torsional::<BigRational>(&v, energy) {
+    match model::torsional::<Fraction>(&v, energy) {
         Ok(v) => Ok(v),
         Err(Fail::Refused(e)) => Err(e),
         Err(Fail::Undecided) => solve_torsional(impact, energy),

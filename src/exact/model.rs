@@ -152,7 +152,12 @@ impl<'a, N: Field> Scene<'a, N> {
     /// `(Δn, Δt, ΔΩ, ΔV_ct)` for ratio `μ` with `Δn D(μ) k² = q_n k²` (Eqs 5–7).
     fn ratio_parts(&self, qn: &N, mu: &N, dk2: &N) -> [N; 4] {
         let per = qn.div(dk2);
-        let dn = self.k2.mul(&per);
+        // Central contact: D k² = k², so Δn = q_n exactly (a tie stays decidable).
+        let dn = if self.central() {
+            qn.clone()
+        } else {
+            self.k2.mul(&per)
+        };
         let dt = mu.mul(&dn);
         let dw = self.dc.sub(&mu.mul(&self.dd)).mul(&per);
         let lever = mu.mul(&self.k2_dd2).sub(&self.cross);
@@ -199,11 +204,20 @@ impl<'a, N: Field> Scene<'a, N> {
         Ok(Answer {
             vcn: e.mul(&self.vcn).neg(),
             vct: N::of(et).mul(&self.vct).neg(),
-            dn: sdn.mul(inv_total),
+            dn: if self.central() {
+                qn.clone()
+            } else {
+                sdn.mul(inv_total)
+            },
             dt: sdt.mul(inv_total),
             dw: self.dc.mul(&qn).add(&self.dd.mul(&qt)).mul(inv_total),
             mu,
         })
+    }
+
+    /// Whether `d_c = 0` exactly: then `S = k² + d_d²` and `Δn = q_n` in every answer.
+    fn central(&self) -> bool {
+        self.fast.contact.tangential_offset == 0.0
     }
 
     /// `1 / S`, formed once.
