@@ -3,13 +3,18 @@
 //! and the scene prepared once, beside a bare loop over the closed form with no
 //! validation (this machine's limit for the model); and on every core.
 //!
+//! The torsional case (spin swept, every output) beside a bare loop over
+//! `torsional::solve`: the cost of the sweep's per-point checks.
+//!
 //! `cargo bench --bench sweep` (figures in docs/performance.md).
 
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
+use restitution::sweep::torsional::{TorsionalColumn, TorsionalSweep};
 use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
+use restitution::torsional::{self, TorsionalImpact};
 use restitution::{Contact, Input, PlanarVelocity};
 
 const POINTS: u64 = 200_000;
@@ -181,5 +186,76 @@ fn all_cores(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, single_core, all_cores);
+fn torsional_base() -> TorsionalImpact {
+    TorsionalImpact {
+        mass: 0.6,
+        normal_inertia: 0.003456,
+        normal_velocity: -3.0,
+        spin: 0.0,
+        restitution: 0.7,
+        torsional_restitution: 0.2,
+        torsional_friction: 0.3,
+        pitch_radius: 0.01,
+    }
+}
+
+fn torsional_one_core(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sweep_torsional_one_core");
+    group.throughput(Throughput::Elements(POINTS));
+    group.sample_size(20);
+    let columns = vec![
+        TorsionalColumn::FinalNormalVelocity,
+        TorsionalColumn::FinalSpin,
+        TorsionalColumn::NormalImpulse,
+        TorsionalColumn::TorsionalImpulse,
+        TorsionalColumn::Regime,
+        TorsionalColumn::SwitchSpin,
+        TorsionalColumn::InitialEnergy,
+        TorsionalColumn::FinalEnergy,
+        TorsionalColumn::EnergyLoss,
+    ];
+    let axes = vec![Axis {
+        param: Input::Spin,
+        values: AxisValues::Linspace {
+            start: -50.0,
+            stop: 50.0,
+            count: POINTS,
+        },
+    }];
+    let s = Sweep::new(
+        TorsionalSweep::new(&torsional_base(), &[Input::Spin], columns),
+        torsional_base(),
+        axes,
+        Combine::Product,
+        u64::MAX,
+    )
+    .expect("a valid sweep");
+    group.bench_function("all_outputs", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            s.for_each_in(0..POINTS, |row| {
+                if let Ok([Cell::Number(x), ..]) = row.outcome {
+                    sum += x;
+                }
+            });
+            black_box(sum)
+        })
+    });
+    group.bench_function("bare_solve", |b| {
+        b.iter(|| {
+            let mut sum = 0.0;
+            let mut impact = torsional_base();
+            for i in 0..POINTS {
+                impact.spin = -50.0 + 100.0 * i as f64 / (POINTS - 1) as f64;
+                if let Ok(o) = torsional::solve(black_box(&impact), true) {
+                    sum += o.final_spin;
+                }
+            }
+            black_box(sum)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, single_core, all_cores, torsional_one_core);
 criterion_main!(benches);

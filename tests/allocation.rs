@@ -102,18 +102,23 @@ fn no_allocation_per_point() {
         assert_eq!(small, large, "allocations grow with the number of points");
         assert!(large <= 4, "{large} allocations per range");
     }
+    let base = TorsionalImpact {
+        mass: 0.1,
+        normal_inertia: 3.6e-5,
+        normal_velocity: -3.0,
+        spin: 0.0,
+        restitution: 0.8,
+        torsional_restitution: 0.2,
+        torsional_friction: 0.3,
+        pitch_radius: 0.005,
+    };
     let torsional = Sweep::new(
-        TorsionalSweep::new(vec![TorsionalColumn::FinalSpin, TorsionalColumn::EnergyLoss]),
-        TorsionalImpact {
-            mass: 0.1,
-            normal_inertia: 3.6e-5,
-            normal_velocity: -3.0,
-            spin: 0.0,
-            restitution: 0.8,
-            torsional_restitution: 0.2,
-            torsional_friction: 0.3,
-            pitch_radius: 0.005,
-        },
+        TorsionalSweep::new(
+            &base,
+            &[Input::Spin],
+            vec![TorsionalColumn::FinalSpin, TorsionalColumn::EnergyLoss],
+        ),
+        base,
         vec![Axis {
             param: Input::Spin,
             values: AxisValues::Linspace {

@@ -293,9 +293,10 @@ pub async fn sweeps(
             let precision = precision(request.precision, base.precision)?;
             let params = axis_params(&request.axes, &TORSIONAL_INPUTS, |_| Ok(()))?;
             let columns = output_columns(request.outputs.as_deref(), TORSIONAL_OUTPUTS)?;
-            let case =
-                TorsionalSweep::new(columns.iter().map(|(_, c)| *c).collect()).with_precision(precision);
-            let sweep = build(case, torsional_input(&base), params, axes, combine, limit, format)?;
+            let point = torsional_input(&base);
+            let case = TorsionalSweep::new(&point, &params, columns.iter().map(|(_, c)| *c).collect())
+                .with_precision(precision);
+            let sweep = build(case, point, params, axes, combine, limit, format)?;
             respond(sweep, names(&columns), format, precision, stall).await
         }
         planar => {

@@ -65,50 +65,92 @@ impl TorsionalColumn {
     }
 }
 
+/// The inputs a torsional impact reads, each with its value.
+const INPUTS: [Input; 8] = [
+    Input::Mass,
+    Input::NormalInertia,
+    Input::NormalVelocity,
+    Input::Spin,
+    Input::Restitution,
+    Input::TorsionalRestitution,
+    Input::TorsionalFriction,
+    Input::PitchRadius,
+];
+
+fn get(p: &TorsionalImpact, input: Input) -> f64 {
+    match input {
+        Input::Mass => p.mass,
+        Input::NormalInertia => p.normal_inertia,
+        Input::NormalVelocity => p.normal_velocity,
+        Input::Spin => p.spin,
+        Input::Restitution => p.restitution,
+        Input::TorsionalRestitution => p.torsional_restitution,
+        Input::TorsionalFriction => p.torsional_friction,
+        _ => p.pitch_radius,
+    }
+}
+
 /// Solves one torsional impact in `precision`; `energy` chooses whether energies are computed.
 pub fn solve_torsional(
     impact: &TorsionalImpact,
     energy: bool,
     precision: Precision,
 ) -> Result<TorsionalOutcome> {
-    let in_range = [
-        impact.mass,
-        impact.normal_inertia,
-        impact.normal_velocity,
-        impact.spin,
-        impact.restitution,
-        impact.torsional_restitution,
-        impact.torsional_friction,
-        impact.pitch_radius,
-    ]
-    .into_iter()
-    .all(in_fast_range);
+    let in_range = INPUTS.iter().all(|&input| in_fast_range(get(impact, input)));
+    solve_checked(impact, energy, precision, in_range)
+}
+
+/// As [`solve_torsional`], told whether every input is in the fast range.
+#[inline]
+fn solve_checked(
+    impact: &TorsionalImpact,
+    energy: bool,
+    precision: Precision,
+    in_range: bool,
+) -> Result<TorsionalOutcome> {
     match precision {
         // As for the planar cases: extreme inputs and overflowing outputs go to the exact evaluator.
         Precision::Fast if in_range => match torsional::solve(impact, energy) {
-            Err(ImpactError::OutputNotFinite { .. }) => exact::solve_torsional(impact, energy),
+            Err(ImpactError::OutputNotFinite { .. }) => solve_exact(impact, energy),
             answer => answer,
         },
-        _ => exact::solve_torsional(impact, energy),
+        _ => solve_exact(impact, energy),
     }
 }
 
-/// The torsional case prepared for a sweep: energies only when a column needs them.
+/// The exact evaluator, kept out of line so the fast path's loop stays small.
+#[inline(never)]
+fn solve_exact(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
+    exact::solve_torsional(impact, energy)
+}
+
+/// The torsional case prepared for a sweep: energies only when a column needs
+/// them, and the fast range of the fixed inputs checked once.
 #[derive(Debug, Clone)]
 pub struct TorsionalSweep {
     columns: Vec<TorsionalColumn>,
     energy: bool,
     precision: Precision,
+    /// Whether every input no axis sets is in the fast range.
+    fixed_in_range: bool,
+    /// The inputs whose range is checked per point: the swept ones.
+    swept: Vec<Input>,
 }
 
 impl TorsionalSweep {
-    /// Prepares a sweep computing only what `columns` need.
-    pub fn new(columns: Vec<TorsionalColumn>) -> Self {
+    /// Prepares a sweep from `base` in which the axes set `swept`, computing
+    /// only what `columns` need.
+    pub fn new(base: &TorsionalImpact, swept: &[Input], columns: Vec<TorsionalColumn>) -> Self {
         let energy = columns.iter().any(|c| c.needs_energy());
+        let fixed_in_range = INPUTS
+            .iter()
+            .all(|&input| swept.contains(&input) || in_fast_range(get(base, input)));
         TorsionalSweep {
             columns,
             energy,
             precision: Precision::Fast,
+            fixed_in_range,
+            swept: INPUTS.into_iter().filter(|input| swept.contains(input)).collect(),
         }
     }
 
@@ -143,11 +185,72 @@ impl SweepCase for TorsionalSweep {
     }
 
     fn evaluate(&self, p: &TorsionalImpact, cells: &mut [Cell]) -> std::result::Result<(), ImpactError> {
-        let outcome = solve_torsional(p, self.energy, self.precision)?;
+        let in_range = self.fixed_in_range && self.swept.iter().all(|&input| in_fast_range(get(p, input)));
+        let outcome = solve_checked(p, self.energy, self.precision, in_range)?;
         let energy = outcome.energy.unwrap_or_default();
         for (cell, column) in cells.iter_mut().zip(&self.columns) {
             *cell = column.cell(&outcome, &energy);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
+
+    fn base() -> TorsionalImpact {
+        TorsionalImpact {
+            mass: 0.6,
+            normal_inertia: 0.003456,
+            normal_velocity: -3.0,
+            spin: 0.0,
+            restitution: 0.7,
+            torsional_restitution: 0.2,
+            torsional_friction: 0.3,
+            pitch_radius: 0.01,
+        }
+    }
+
+    /// Final spins of a spin sweep from `base` over `spins`.
+    fn swept(base: TorsionalImpact, spins: Vec<f64>) -> Vec<f64> {
+        let case = TorsionalSweep::new(&base, &[Input::Spin], vec![TorsionalColumn::FinalSpin]);
+        let axes = vec![Axis {
+            param: Input::Spin,
+            values: AxisValues::List(spins),
+        }];
+        let sweep = Sweep::new(case, base, axes, Combine::Product, u64::MAX).expect("a sweep");
+        let mut out = Vec::new();
+        sweep.for_each_in(0..sweep.points(), |row| match row.outcome {
+            Ok([Cell::Number(x)]) => out.push(*x),
+            other => panic!("{other:?}"),
+        });
+        out
+    }
+
+    /// Out-of-range inputs, fixed or swept, are answered as `solve_torsional` answers them.
+    #[test]
+    fn extreme_fixed_and_swept_inputs_escalate_as_single_solves_do() {
+        let spins = vec![20.0, 1e250, -3e-250, 0.0];
+        for b in [
+            base(),
+            TorsionalImpact {
+                mass: 1e-250,
+                ..base()
+            },
+        ] {
+            let got = swept(b, spins.clone());
+            for (spin, got) in spins.iter().zip(got) {
+                let one = solve_torsional(&TorsionalImpact { spin: *spin, ..b }, false, Precision::Fast)
+                    .expect("an answer");
+                assert_eq!(
+                    got.to_bits(),
+                    one.final_spin.to_bits(),
+                    "spin {spin}, mass {}",
+                    b.mass
+                );
+            }
+        }
     }
 }
