@@ -23,14 +23,10 @@ fn digitization_scatter() -> f64 {
     validation::digitization_scatter().expect("Test 6 and Test 8 data")
 }
 
-fn span(points: &[Point]) -> f64 {
-    validation::span(points)
-}
-
 /// The span of every series of `quantity` together.
 fn quantity_span(d: &Dataset, quantity: Quantity) -> f64 {
     let points: Vec<Point> = d.of(quantity).flat_map(|s| s.points.iter().copied()).collect();
-    span(&points)
+    validation::span(&points)
 }
 
 fn deviation(d: &Dataset, et: f64, min_x: f64, quantity: Quantity, regime: &str) -> Deviation {
