@@ -3,6 +3,7 @@
 //! [`Fraction`]s of big integers (slow, always decided).
 
 use std::cmp::Ordering;
+use std::convert::Infallible;
 
 use num_bigint::{BigInt, BigUint};
 #[cfg(test)]
@@ -13,6 +14,10 @@ use super::bounded::Bounded;
 
 /// A number the exact model can be evaluated in.
 pub(crate) trait Field: Clone {
+    /// How an undecided sign or rounding is reported: [`Undecided`] in
+    /// bounded arithmetic; uninhabited ([`Infallible`]) in exact arithmetic,
+    /// which decides every sign and rounding.
+    type Undecided;
     /// An f64 input, exactly.
     fn of(x: f64) -> Self;
     fn add(&self, o: &Self) -> Self;
@@ -21,15 +26,20 @@ pub(crate) trait Field: Clone {
     /// Division; the model only divides by values whose sign it has decided non-zero.
     fn div(&self, o: &Self) -> Self;
     fn neg(&self) -> Self;
-    /// The sign of the exact value, `None` if undecided.
-    fn sign(&self) -> Option<Ordering>;
-    /// The exact value correctly rounded to f64 (`±∞` beyond the range), `None` if undecided.
-    fn round(&self) -> Option<f64>;
+    /// The sign of the exact value.
+    fn sign(&self) -> Result<Ordering, Self::Undecided>;
+    /// The exact value correctly rounded to f64 (`±∞` beyond the range).
+    fn round(&self) -> Result<f64, Self::Undecided>;
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;
 }
 
+/// A sign or rounding the double-double bound could not decide.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Undecided;
+
 impl<const TRACK: bool> Field for Bounded<TRACK> {
+    type Undecided = Undecided;
     #[inline]
     fn of(x: f64) -> Self {
         Self::exact(x)
@@ -55,12 +65,12 @@ impl<const TRACK: bool> Field for Bounded<TRACK> {
         Self::neg(self)
     }
     #[inline]
-    fn sign(&self) -> Option<Ordering> {
-        Self::sign(self)
+    fn sign(&self) -> Result<Ordering, Undecided> {
+        Self::sign(self).ok_or(Undecided)
     }
     #[inline]
-    fn round(&self) -> Option<f64> {
-        Self::round(self)
+    fn round(&self) -> Result<f64, Undecided> {
+        Self::round(self).ok_or(Undecided)
     }
     fn approx(&self) -> f64 {
         Self::approx(self)
@@ -101,6 +111,7 @@ impl Fraction {
 }
 
 impl Field for Fraction {
+    type Undecided = Infallible;
     fn of(x: f64) -> Self {
         // Every finite f64 is m·2^k; the model only sees finite inputs.
         let bits = x.to_bits();
@@ -156,11 +167,11 @@ impl Field for Fraction {
             den: self.den.clone(),
         }
     }
-    fn sign(&self) -> Option<Ordering> {
-        Some(self.num.sign().cmp(&num_bigint::Sign::NoSign))
+    fn sign(&self) -> Result<Ordering, Infallible> {
+        Ok(self.num.sign().cmp(&num_bigint::Sign::NoSign))
     }
-    fn round(&self) -> Option<f64> {
-        Some(round_quotient(&self.num, &self.den))
+    fn round(&self) -> Result<f64, Infallible> {
+        Ok(round_quotient(&self.num, &self.den))
     }
     fn approx(&self) -> f64 {
         round_quotient(&self.num, &self.den)
@@ -275,11 +286,11 @@ mod tests {
                     let q = fa.div(&fb);
                     assert!(q.den.is_positive());
                     assert_eq!(as_ratio(&q), of(a) / of(b), "{a} / {b}");
-                    assert_eq!(q.round(), Some(round_rational(&(of(a) / of(b)))), "{a} / {b}");
+                    assert_eq!(q.round(), Ok(round_rational(&(of(a) / of(b)))), "{a} / {b}");
                 }
                 assert_eq!(
                     fa.sub(&fb).sign(),
-                    Some(a.total_cmp(&b)).filter(|_| a != b).or(Some(Ordering::Equal))
+                    Ok(if a == b { Ordering::Equal } else { a.total_cmp(&b) })
                 );
             }
         }

@@ -18,9 +18,11 @@ mod bounded;
 mod field;
 mod model;
 
+use std::convert::Infallible;
+
 use self::bounded::Bounded;
-use self::field::{Field, Fraction};
-use self::model::{Exact, Fail, PlanarLaw as Law};
+use self::field::{Field, Fraction, Undecided};
+use self::model::{Fail, PlanarLaw as Law};
 use crate::error::{ImpactError, Input, Result, finite, in_range};
 use crate::normal::{NormalImpact, PointMass};
 use crate::planar::{Outputs, PlanarOutcome, Regime};
@@ -58,39 +60,33 @@ pub enum Stage {
     Rational,
 }
 
-/// The arithmetic of one evaluation of the model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Pass {
-    /// Double-double with the cheaper double-word algorithms.
-    DoubleDouble,
-    /// Double-double keeping exact sums and products exact (decides ties and
-    /// cancelled zeros formed without a quotient).
-    Tracked,
-    /// Exact fractions.
-    Rational,
+/// Runs the model in double-double (`fast`); if that cannot decide, in
+/// double-double tracking exact operations (`tracked`: decides ties and
+/// cancelled zeros formed without a quotient); if that cannot either, in exact
+/// fractions (`rational`), which decide everything: its undecided case is
+/// uninhabited.
+fn adaptive<T>(
+    fast: impl FnOnce() -> std::result::Result<T, Fail<Undecided>>,
+    tracked: impl FnOnce() -> std::result::Result<T, Fail<Undecided>>,
+    rational: impl FnOnce() -> std::result::Result<T, Fail<Infallible>>,
+) -> (Result<T>, Stage) {
+    let double_double = |result| match result {
+        Ok(v) => Some(Ok(v)),
+        Err(Fail::Refused(e)) => Some(Err(e)),
+        Err(Fail::Undecided(Undecided)) => None,
+    };
+    if let Some(answer) = double_double(fast()).or_else(|| double_double(tracked())) {
+        return (answer, Stage::DoubleDouble);
+    }
+    (decided(rational()), Stage::Rational)
 }
 
-/// Runs `model` in double-double; if that cannot decide, in double-double
-/// tracking exact operations; if that cannot either, in exact fractions.
-fn adaptive<T>(model: impl Fn(Pass) -> Exact<T>) -> (Result<T>, Stage) {
-    for pass in [Pass::DoubleDouble, Pass::Tracked] {
-        match model(pass) {
-            Ok(v) => return (Ok(v), Stage::DoubleDouble),
-            Err(Fail::Refused(e)) => return (Err(e), Stage::DoubleDouble),
-            Err(Fail::Undecided) => {}
-        }
-    }
-    match model(Pass::Rational) {
-        Ok(v) => (Ok(v), Stage::Rational),
-        Err(Fail::Refused(e)) => (Err(e), Stage::Rational),
-        // Rationals decide every sign and rounding; this arm cannot be reached.
-        Err(Fail::Undecided) => (
-            Err(ImpactError::OutputNotFinite {
-                output: crate::error::Output::FinalNormalVelocity,
-            }),
-            Stage::Rational,
-        ),
-    }
+/// The rational pass's result: an answer or the model's refusal.
+fn decided<T>(result: std::result::Result<T, Fail<Infallible>>) -> Result<T> {
+    result.map_err(|fail| match fail {
+        Fail::Refused(e) => e,
+        Fail::Undecided(never) => match never {},
+    })
 }
 
 /// Builds a planar scene like [`PlanarScene::new`], deciding whether the
@@ -106,7 +102,7 @@ pub fn scene(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<P
                 &<Fraction as Field>::of(contact.tangential_offset)
                     .mul(&<Fraction as Field>::of(velocity.angular)),
             );
-            if exact.sign() == Some(std::cmp::Ordering::Less) {
+            if exact.sign() == Ok(std::cmp::Ordering::Less) {
                 Ok(PlanarScene::approaching_below_range(body, contact, velocity))
             } else {
                 Err(ImpactError::NotApproaching {
@@ -177,11 +173,11 @@ pub fn solve_planar_staged(
             Ok(v) => v,
             Err(e) => return (Err(e), Stage::DoubleDouble),
         };
-        return adaptive(|pass| match pass {
-            Pass::DoubleDouble => model::point_mass::<Bounded>(&v, outputs),
-            Pass::Tracked => model::point_mass::<Bounded<true>>(&v, outputs),
-            Pass::Rational => model::point_mass::<Fraction>(&v, outputs),
-        });
+        return adaptive(
+            || model::point_mass::<Bounded>(&v, outputs),
+            || model::point_mass::<Bounded<true>>(&v, outputs),
+            || model::point_mass::<Fraction>(&v, outputs),
+        );
     }
     let prepared = Body::new(p.mass, p.inertia)
         .and_then(|body| scene(body, p.contact, p.velocity))
@@ -190,11 +186,11 @@ pub fn solve_planar_staged(
         Ok(v) => v,
         Err(e) => return (Err(e), Stage::DoubleDouble),
     };
-    adaptive(|pass| match pass {
-        Pass::DoubleDouble => model::planar::<Bounded>(&scene, e, law, outputs),
-        Pass::Tracked => model::planar::<Bounded<true>>(&scene, e, law, outputs),
-        Pass::Rational => model::planar::<Fraction>(&scene, e, law, outputs),
-    })
+    adaptive(
+        || model::planar::<Bounded>(&scene, e, law, outputs),
+        || model::planar::<Bounded<true>>(&scene, e, law, outputs),
+        || model::planar::<Fraction>(&scene, e, law, outputs),
+    )
 }
 
 /// Solves one planar impact exactly.
@@ -208,11 +204,11 @@ pub fn solve_torsional_staged(impact: &TorsionalImpact, energy: bool) -> (Result
         Ok(v) => v,
         Err(e) => return (Err(e), Stage::DoubleDouble),
     };
-    adaptive(|pass| match pass {
-        Pass::DoubleDouble => model::torsional::<Bounded>(&v, energy),
-        Pass::Tracked => model::torsional::<Bounded<true>>(&v, energy),
-        Pass::Rational => model::torsional::<Fraction>(&v, energy),
-    })
+    adaptive(
+        || model::torsional::<Bounded>(&v, energy),
+        || model::torsional::<Bounded<true>>(&v, energy),
+        || model::torsional::<Fraction>(&v, energy),
+    )
 }
 
 /// Solves one torsional impact exactly.
@@ -229,20 +225,11 @@ pub fn solve_planar_rational(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) 
     let body = Body::new(p.mass, p.inertia)?;
     let scene = scene(body, p.contact, p.velocity)?;
     let (e, exact_law) = planar_law(law, p)?;
-    match model::planar::<Fraction>(&scene, e, exact_law, outputs) {
-        Ok(v) => Ok(v),
-        Err(Fail::Refused(e)) => Err(e),
-        // Rationals decide everything; kept total without a panic.
-        Err(Fail::Undecided) => solve_planar(law, p, outputs),
-    }
+    decided(model::planar::<Fraction>(&scene, e, exact_law, outputs))
 }
 
 /// Solves one torsional impact in exact rationals only.
 pub fn solve_torsional_rational(impact: &TorsionalImpact, energy: bool) -> Result<TorsionalOutcome> {
     let v = impact.validate()?;
-    match model::torsional::<Fraction>(&v, energy) {
-        Ok(v) => Ok(v),
-        Err(Fail::Refused(e)) => Err(e),
-        Err(Fail::Undecided) => solve_torsional(impact, energy),
-    }
+    decided(model::torsional::<Fraction>(&v, energy))
 }

@@ -4,7 +4,8 @@
 //! Every output is formed as its exact value in the field and rounded once at
 //! the end; every regime decision is the exact sign of a field value. In the
 //! double-double field a sign or a rounding may be undecided
-//! ([`Fail::Undecided`]); the caller then repeats the whole answer in rationals.
+//! ([`Fail::Undecided`]); the caller then repeats the whole answer in rationals,
+//! where that variant is uninhabited.
 //! Unlike the fast path, no formula here is chosen for its rounding: any
 //! algebraically equal form has the same exact value.
 
@@ -21,28 +22,30 @@ use crate::planar::{
 use crate::scene::{ContactVelocity, PlanarScene, PlanarVelocity};
 use crate::torsional::{RotationalEnergy, TorsionalOutcome, TorsionalRegime, Validated};
 
-/// Why the exact model gave no answer in a field.
+/// Why the exact model gave no answer in a field whose undecided signs and
+/// roundings are reported as `U` ([`Field::Undecided`]).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Fail {
-    /// A sign or a rounding the double-double bound could not decide.
-    Undecided,
+pub(crate) enum Fail<U> {
+    /// A sign or a rounding the field could not decide.
+    Undecided(U),
     /// The model's own refusal (the same in every field).
     Refused(ImpactError),
 }
 
-impl From<ImpactError> for Fail {
+impl<U> From<ImpactError> for Fail<U> {
     fn from(e: ImpactError) -> Self {
         Fail::Refused(e)
     }
 }
 
-pub(crate) type Exact<T> = Result<T, Fail>;
+/// The model's result in the field `N`.
+pub(crate) type Exact<N, T> = Result<T, Fail<<N as Field>::Undecided>>;
 
-fn sign<N: Field>(x: &N) -> Exact<Ordering> {
-    x.sign().ok_or(Fail::Undecided)
+fn sign<N: Field>(x: &N) -> Exact<N, Ordering> {
+    x.sign().map_err(Fail::Undecided)
 }
 
-fn abs<N: Field>(x: &N) -> Exact<N> {
+fn abs<N: Field>(x: &N) -> Exact<N, N> {
     Ok(if sign(x)? == Ordering::Less {
         x.neg()
     } else {
@@ -51,8 +54,8 @@ fn abs<N: Field>(x: &N) -> Exact<N> {
 }
 
 /// The output correctly rounded, or its refusal when it rounds beyond the f64 range.
-fn out<N: Field>(output: Output, x: &N) -> Exact<f64> {
-    let v = x.round().ok_or(Fail::Undecided)?;
+fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
+    let v = x.round().map_err(Fail::Undecided)?;
     if v.is_finite() {
         Ok(v)
     } else {
@@ -140,7 +143,7 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// `D(μ) k² = k² + d_c (d_c − μ d_d)`, refused unless `> 0`.
-    fn positive_dk2(&self, mu: f64, law: Input) -> Exact<N> {
+    fn positive_dk2(&self, mu: f64, law: Input) -> Exact<N, N> {
         let dk2 = self.k2.add(&self.dc.mul(&self.dc.sub(&N::of(mu).mul(&self.dd))));
         if sign(&dk2)? == Ordering::Greater {
             Ok(dk2)
@@ -165,7 +168,7 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// The answer for a prescribed ratio `μ` with restitution `e`.
-    fn ratio_answer(&self, e: &N, mu: f64, law: Input) -> Exact<Answer<N>> {
+    fn ratio_answer(&self, e: &N, mu: f64, law: Input) -> Exact<N, Answer<N>> {
         let dk2 = self.positive_dk2(mu, law)?;
         let mu = N::of(mu);
         let qn = N::of(1.0).add(e).mul(&self.s);
@@ -194,7 +197,7 @@ impl<'a, N: Field> Scene<'a, N> {
     /// `Δn = [(k² + d_d²) q_n − d_c d_d q_t] / S`, `Δt = [d_c d_d q_n − (k² + d_c²) q_t] / S`,
     /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`. Its ratio
     /// `Δt / Δn` is set only where `Δn ≠ 0`.
-    fn target_answer(&self, e: &N, et: f64) -> Exact<Answer<N>> {
+    fn target_answer(&self, e: &N, et: f64) -> Exact<N, Answer<N>> {
         let one = N::of(1.0);
         let qn = one.add(e).mul(&self.s);
         let qt = one.add(&N::of(et)).mul(&self.vct);
@@ -227,14 +230,14 @@ impl<'a, N: Field> Scene<'a, N> {
 
     /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `V_ct = 0`
     /// (`q_t = v_ct`), `None` if its `Δn = 0`.
-    fn critical_ratio(&self, e: &N) -> Exact<Option<N>> {
+    fn critical_ratio(&self, e: &N) -> Exact<N, Option<N>> {
         let qn = N::of(1.0).add(e).mul(&self.s);
         let (sdn, sdt) = self.scaled_impulses(&qn, &self.vct);
         Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
     }
 
     /// The bilinear law (Coulomb friction for `e_t = 0`).
-    fn bilinear(&self, e: &N, f: f64, et: f64, capped: Regime, outputs: Outputs) -> Exact<PlanarOutcome> {
+    fn bilinear(&self, e: &N, f: f64, et: f64, capped: Regime, outputs: Outputs) -> Exact<N, PlanarOutcome> {
         let target = self.target_answer(e, et)?;
         let known_critical = (et == 0.0).then(|| target.mu.clone());
         let f_n = N::of(f);
@@ -271,7 +274,7 @@ impl<'a, N: Field> Scene<'a, N> {
 
     /// The Appendix's two phases: approach to `v̄_cn = 0` with `μ_A`, rebound
     /// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) / D(μ_A)` (Eq 11, A-16).
-    fn kinetic(&self, r: f64, mu_a: f64, mu_r: f64, outputs: Outputs) -> Exact<PlanarOutcome> {
+    fn kinetic(&self, r: f64, mu_a: f64, mu_r: f64, outputs: Outputs) -> Exact<N, PlanarOutcome> {
         let dk_a = self.positive_dk2(mu_a, Input::ApproachImpulseRatio)?;
         let dk_r = if r > 0.0 {
             Some(self.positive_dk2(mu_r, Input::ReboundImpulseRatio)?)
@@ -321,7 +324,7 @@ impl<'a, N: Field> Scene<'a, N> {
         known_critical: Option<Option<N>>,
         outputs: Outputs,
         law: Input,
-    ) -> Exact<PlanarOutcome> {
+    ) -> Exact<N, PlanarOutcome> {
         let mu = a.mu.as_ref().ok_or(ImpactError::OutputNotFinite {
             output: Output::ImpulseRatio,
         })?;
@@ -410,7 +413,7 @@ impl<'a, N: Field> Scene<'a, N> {
     /// (Eq 8), the final energy as their difference (the work form equals
     /// `T_0 − T_f` exactly, by the moment equation),
     /// `T_M = ½ m [k² (v_cn² + v_ct²) + (d_d v_cn + d_c v_ct)²] / S` and `T_L* = T_L / T_M`.
-    fn energy(&self, work: &N) -> Exact<PlanarEnergy> {
+    fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
         // ½ m and ½ I are exact (unless below the normal range, where the bound says so).
         let half_m = half::<N>().mul(&self.m);
         let half_i = half::<N>().mul(&self.inertia);
@@ -451,7 +454,7 @@ pub(crate) fn planar<N: Field>(
     e: f64,
     law: PlanarLaw,
     outputs: Outputs,
-) -> Exact<PlanarOutcome> {
+) -> Exact<N, PlanarOutcome> {
     let sc = Scene::<N>::new(scene);
     let e_n = N::of(e);
     match law {
@@ -486,7 +489,7 @@ pub(crate) fn planar<N: Field>(
 
 /// A point mass: `V_n = −e v_n`, `P_n = m (1 + e)(−v_n)`, `μ_c = v_t / ((1 + e) v_n)`,
 /// `T_M` the whole initial energy, `T_L = ½ m (1 − e)(1 + e) v_n²`.
-pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<PlanarOutcome> {
+pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<N, PlanarOutcome> {
     let PointMass { mass: m, vn, vt, e } = *p;
     let (m_n, vn_n, vt_n, e_n) = (N::of(m), N::of(vn), N::of(vt), N::of(e));
     let one = N::of(1.0);
@@ -523,7 +526,7 @@ pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<Pla
 /// The torsional model (Eqs 28–31) in the field: switch
 /// `ω_s = μ_z ρ_p m (1 + e)(−v_n) / I_n`; `Ω_n = −e_z ω_n` for `|ω_n| ≤ ω_s`,
 /// else `Ω_n = sgn(ω_n) [(1 − e_z)|ω_n| − ω_s]`.
-pub(crate) fn torsional<N: Field>(v: &Validated, energy: bool) -> Exact<TorsionalOutcome> {
+pub(crate) fn torsional<N: Field>(v: &Validated, energy: bool) -> Exact<N, TorsionalOutcome> {
     let one = N::of(1.0);
     let (m, i_n, vn, w, e, ez) = (
         N::of(v.m),
