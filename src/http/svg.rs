@@ -5,6 +5,8 @@
 //! measured points, `docs/validation.md`) draw with.
 
 use axum::http::StatusCode;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::problem::ApiError;
@@ -212,6 +214,18 @@ fn draw(x_name: &str, y_name: &str, series: &[Vec<Vec<(f64, f64)>>], labels: &[S
     .render()
 }
 
+/// plotters' tick label, except that a tick one rounding away from zero
+/// (as tick positions stepped from a negative start often are) reads `0.0`,
+/// not `-0.0`.
+fn tick_label(value: &f64) -> String {
+    let label = RangedCoordf64::format(value);
+    if label.parse::<f64>() == Ok(0.0) {
+        RangedCoordf64::format(&0.0)
+    } else {
+        label
+    }
+}
+
 impl Figure {
     /// The figure as an SVG document. plotters' errors cannot occur when
     /// writing into a String, and any that did would leave a partial drawing
@@ -237,6 +251,8 @@ impl Figure {
                     .configure_mesh()
                     .x_desc(&self.x_name)
                     .y_desc(&self.y_name)
+                    .x_label_formatter(&tick_label)
+                    .y_label_formatter(&tick_label)
                     .draw();
                 let color = |i: usize| {
                     let (r, g, b) = TABLEAU[i % TABLEAU.len()];
@@ -287,5 +303,39 @@ impl Figure {
             let _ = root.present();
         }
         text
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tick_next_to_zero_reads_zero_and_others_keep_their_sign() {
+        assert_eq!(RangedCoordf64::format(&-2.7e-17), "-0.0", "plotters' own label");
+        assert_eq!(tick_label(&-2.7e-17), "0.0");
+        assert_eq!(tick_label(&-0.0), "0.0");
+        assert_eq!(tick_label(&-0.25), "-0.25");
+        assert_eq!(tick_label(&1.5), "1.5");
+    }
+
+    #[test]
+    fn no_rendered_figure_has_a_negative_zero_tick() {
+        let figure = Figure {
+            title: "t".into(),
+            x_name: "x".into(),
+            y_name: "y".into(),
+            curves: vec![Curve {
+                label: String::new(),
+                segments: vec![vec![(-0.3, -0.34), (0.7, 0.12)]],
+            }],
+            markers: Vec::new(),
+        };
+        let svg = figure.render();
+        assert!(
+            svg.contains(">0.0<") || svg.contains("\n0.0\n"),
+            "a zero tick is drawn"
+        );
+        assert!(!svg.contains("-0.0\n") && !svg.contains(">-0.0<"), "{svg}");
     }
 }
