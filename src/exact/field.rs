@@ -11,6 +11,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 use super::bounded::Bounded;
+use super::compensated::Compensated;
 
 /// A number the exact model can be evaluated in.
 pub(crate) trait Field: Clone {
@@ -32,6 +33,45 @@ pub(crate) trait Field: Clone {
     fn round(&self) -> Result<f64, Self::Undecided>;
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;
+}
+
+impl Field for Compensated {
+    type Undecided = Undecided;
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        Self::exact(x)
+    }
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        Self::add(self, o)
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        Self::sub(self, o)
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        Self::mul(self, o)
+    }
+    #[inline]
+    fn div(&self, o: &Self) -> Self {
+        Self::div(self, o)
+    }
+    #[inline(always)]
+    fn neg(&self) -> Self {
+        Self::neg(self)
+    }
+    #[inline]
+    fn sign(&self) -> Result<Ordering, Undecided> {
+        Self::sign(self).ok_or(Undecided)
+    }
+    #[inline]
+    fn round(&self) -> Result<f64, Undecided> {
+        Self::round(self).ok_or(Undecided)
+    }
+    fn approx(&self) -> f64 {
+        Self::approx(self)
+    }
 }
 
 /// A sign or rounding the double-double bound could not decide.

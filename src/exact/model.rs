@@ -41,6 +41,7 @@ impl<U> From<ImpactError> for Fail<U> {
 /// The model's result in the field `N`.
 pub(crate) type Exact<N, T> = Result<T, Fail<<N as Field>::Undecided>>;
 
+#[inline(always)]
 fn sign<N: Field>(x: &N) -> Exact<N, Ordering> {
     x.sign().map_err(Fail::Undecided)
 }
@@ -54,6 +55,7 @@ fn abs<N: Field>(x: &N) -> Exact<N, N> {
 }
 
 /// The output correctly rounded, or its refusal when it rounds beyond the f64 range.
+#[inline(always)]
 fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
     let v = x.round().map_err(Fail::Undecided)?;
     if v.is_finite() {

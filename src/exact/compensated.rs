@@ -1,0 +1,436 @@
+//! Compensated evaluation with a static error bound: the first, cheapest
+//! stage of `precision: "exact"`.
+//!
+//! A [`Compensated`] `(h, l)` is the model evaluated twice at once: `h` is the
+//! plain f64 evaluation, and `l` gathers the rounding errors of every step,
+//! found exactly by the error-free transformations (TwoSum, FMA-based TwoProd,
+//! the exact division remainder) and propagated to first order in plain f64,
+//! as in the compensated algorithms of Ogita, Rump and Oishi ("Accurate sum
+//! and dot product", SIAM J. Sci. Comput. 2005) and of Graillat, Langlois and
+//! Louvet (compensated Horner). Unlike double-double arithmetic the pair is
+//! never renormalised, so a sum costs one TwoSum and two additions, and a
+//! product one TwoProd and two FMAs.
+//!
+//! The bound is static, in the manner of Shewchuk's predicates: each value also
+//! carries `M`, an upper bound of `|x|` built like the value with every term
+//! taken positive (a quotient's is the condition-weighted
+//! `(M_x + |q| M_y) / |y|_low`), and a small integer `λ` that depends only on
+//! the shape of the computation. The invariants are, for the exact value `x`
+//! and `u = 2⁻⁵³`:
+//!
+//! - (I1) `|x| ≤ M`,
+//! - (I2) `|l| ≤ λ u M`,
+//! - (I3) `|x − (h + l)| ≤ ε u² M`, with `ε = λ²`.
+//!
+//! Each operation derives its own `ε` from its operands' (the rule is at the
+//! operation) and its `λ` so that `ε ≤ λ²` carries over; only `λ` is stored.
+//! The derivations use four facts kept true at run time:
+//!
+//! - `M ≥ 2⁻⁹⁰⁰` or `M = 0` (every other `M` is raised to [`FLOOR`], which
+//!   only loosens the bounds), so a rounding in the subnormal range (at most
+//!   2⁻¹⁰⁷⁵ absolute) is far below `u² M` and is covered by the `+ 1` each rule
+//!   carries for slack. `M = 0` means the value is exactly zero with `h = l = 0`
+//!   (a zero input, or a product with one);
+//! - `λ ≤ 2¹⁶` where a decision is made ([`LAMBDA_MAX`]; `λ` only grows, so
+//!   every step before obeyed it too), so `λ³ u < 2⁻⁴`: the relative factors
+//!   `1 + λu` and the like that the rules round away cost less than that `+ 1`;
+//! - `M` is computed in round-to-nearest, at most a few roundings per step and
+//!   fewer than 4096 along any path of the model, so the exact bound is below
+//!   `M (1 + 2⁻⁴⁰)`, the factor applied where a decision is made;
+//! - overflow leaves an infinity or NaN in `h` or `l`, and nothing is then
+//!   certified.
+//!
+//! Wherever a sign or a rounding is not certified the caller repeats the
+//! answer in double-double arithmetic, whose bound is tracked operation by
+//! operation, and then in rationals.
+
+use std::cmp::Ordering;
+
+/// Unit roundoff `u = 2⁻⁵³`.
+const U: f64 = f64::EPSILON / 2.0;
+/// `u²`.
+const U2: f64 = U * U;
+/// Every non-zero `M` is at least this (2⁻⁹⁰⁰): see the module documentation.
+const FLOOR: f64 = f64::from_bits((1023 - 900) << 52);
+/// 2⁹⁰⁰, the reciprocal of [`FLOOR`].
+const ZERO_OR_LARGE: f64 = f64::from_bits((1023 + 900) << 52);
+/// The least `|q|` of a certified quotient that is not exactly zero (2⁻⁹⁰⁰).
+const QUOTIENT_MIN: f64 = FLOOR;
+/// The most `λ` may reach where a decision is made (2¹⁶).
+const LAMBDA_MAX: f64 = (1u64 << 16) as f64;
+/// Covers the roundings of `M` along a path (fewer than 4096 of them).
+const M_GROWTH: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
+/// The exponent field of an f64.
+const EXPONENT_BITS: u64 = 0x7ff0_0000_0000_0000;
+/// The fraction field of an f64.
+const MANTISSA_BITS: u64 = (1 << 52) - 1;
+
+/// `m` raised to [`FLOOR`] (a NaN stays a NaN).
+#[inline(always)]
+fn floored(m: f64) -> f64 {
+    if m < FLOOR { FLOOR } else { m }
+}
+
+/// `M_x M_y` raised to [`FLOOR`], except that it is zero when a factor is (an
+/// exact zero times anything finite is an exact zero), without a branch:
+/// `min(M_x, M_y) 2⁹⁰⁰` is 0 for a zero factor and at least 1 otherwise.
+#[inline(always)]
+fn product_magnitude(mx: f64, my: f64) -> f64 {
+    let floor = min(FLOOR, min(mx, my) * ZERO_OR_LARGE);
+    max(mx * my, floor)
+}
+
+/// The larger of `a` and `b`, `b` if either is a NaN (one instruction, unlike
+/// `f64::max`). A NaN dropped here cannot certify anything: an `M` or `λ`
+/// becomes a NaN only from an overflow (which leaves a NaN or infinity in `h`)
+/// or from `0 · ∞` between an exact zero and an overflowed `M`, whose product
+/// is the exact zero it is taken for.
+#[inline(always)]
+fn max(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of `a` and `b`, `b` if either is a NaN; see [`max`].
+#[inline(always)]
+fn min(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
+/// `a + b = s + e` exactly (Knuth's TwoSum).
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// A compensated value with its static bound; see the module documentation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Compensated {
+    h: f64,
+    l: f64,
+    /// `M`: an upper bound of the exact value's magnitude.
+    m: f64,
+    /// `λ` in (I2); `ε = λ²` in (I3).
+    lambda: f64,
+}
+
+impl Compensated {
+    /// An f64, exactly (`λ = 0`).
+    #[inline(always)]
+    pub(crate) fn exact(x: f64) -> Self {
+        Compensated {
+            h: x,
+            l: 0.0,
+            m: if x == 0.0 { 0.0 } else { floored(x.abs()) },
+            lambda: 0.0,
+        }
+    }
+
+    /// A value on which every decision is uncertain.
+    const UNKNOWN: Self = Compensated {
+        h: f64::NAN,
+        l: f64::NAN,
+        m: f64::INFINITY,
+        lambda: f64::INFINITY,
+    };
+
+    /// The value as one f64, for diagnostics only.
+    pub(crate) fn approx(&self) -> f64 {
+        self.h + self.l
+    }
+
+    /// The sum. `h_x + h_y = s + t` exactly (TwoSum, `|t| ≤ u(|h_x| + |h_y|)`),
+    /// and `l = (l_x + l_y) + t` in two roundings. With `λ = max(λ_x, λ_y)` and
+    /// `M = M_x + M_y`, the first rounding is at most `u · λ u M`, the second at
+    /// most `u (λ + 1) u M`, and the inherited errors at most `λ² u² M`: so
+    /// `ε_s = λ² + 2λ + 2 ≤ (λ + 2)²`, and `|l| ≤ (λ + 1) u M (1 + u)`: `λ_s = λ + 2`.
+    #[inline(always)]
+    pub(crate) fn add(&self, o: &Self) -> Self {
+        let (s, t) = two_sum(self.h, o.h);
+        Compensated {
+            h: s,
+            l: (self.l + o.l) + t,
+            m: self.m + o.m,
+            lambda: max(self.lambda, o.lambda) + 2.0,
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn neg(&self) -> Self {
+        Compensated {
+            h: -self.h,
+            l: -self.l,
+            ..*self
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn sub(&self, o: &Self) -> Self {
+        self.add(&o.neg())
+    }
+
+    /// The product. `h_x h_y = p + t` exactly (FMA TwoProd), and
+    /// `l = h_x l_y + (l_x h_y + t)` in two FMAs; the term `l_x l_y` is dropped.
+    /// With `M = M_x M_y`: the dropped term is at most `λ_x λ_y u² M`, the
+    /// roundings at most `(λ_x + 1) u² M` and `(λ_x + λ_y + 1) u² M`, the
+    /// inherited errors at most `(λ_x² + λ_y²) u² M` (to first order; the rest is
+    /// in the slack). So `ε_p = λ_x² + λ_y² + λ_x λ_y + 2λ_x + λ_y + 3
+    /// ≤ (λ_x + λ_y + 2)²`, and `λ_p = λ_x + λ_y + 2`.
+    #[inline(always)]
+    pub(crate) fn mul(&self, o: &Self) -> Self {
+        let p = self.h * o.h;
+        let t = self.h.mul_add(o.h, -p);
+        Compensated {
+            h: p,
+            l: self.h.mul_add(o.l, self.l.mul_add(o.h, t)),
+            m: product_magnitude(self.m, o.m),
+            lambda: self.lambda + o.lambda + 2.0,
+        }
+    }
+
+    /// The quotient `x / y`. The divisor is first renormalised, `(h_y, l_y)`
+    /// with `|l_y| ≤ u |h_y|`, and bounded below by
+    /// `y_low = (|h_y| − |l_y|)(1 − 4u) − λ_y² u² M_y (1 + 2⁻⁴⁰) ≤ |y|`. Then
+    /// `q = h_x / h_y`, the remainder `r = h_x − q h_y` (exact, by one FMA),
+    /// `N = r + l_x − q l_y`, `l = N / h_y`, and `M_q = (M_x + |q| M_y) / y_low`,
+    /// which is at least `|x / y|`.
+    ///
+    /// `|r| ≤ u |q| |h_y|`, so `|N| ≤ (2 + λ_x) u y_low M_q` and
+    /// `|l| ≤ (2 + λ_x) u M_q`. With `λ = max(λ_x, λ_y)`, the inherited errors give
+    /// at most `λ² u² M_q` plus a third-order term `λ_y² (2 + λ_x) u (M_y / y_low) u² M_q`,
+    /// which is at most `u² M_q` where `λ_y² (2 + λ_x) u M_y ≤ y_low` (checked;
+    /// elsewhere nothing is certified). The two roundings in `N`, the one in
+    /// `l` and dividing by `h_y` rather than `h_y + l_y` add at most
+    /// `4 (2 + λ_x) u² M_q`. So `ε_q = λ² + 4λ + 11 ≤ (λ + 4)²`, and `λ_q = λ + 4`.
+    ///
+    /// An exactly zero dividend gives an exact zero; a quotient below
+    /// [`QUOTIENT_MIN`] (whose own rounding is not relative) certifies nothing.
+    pub(crate) fn div(&self, o: &Self) -> Self {
+        if self.m == 0.0 {
+            return Compensated::exact(0.0);
+        }
+        let (yh, yl) = two_sum(o.h, o.l);
+        let eps_y = o.lambda * o.lambda;
+        let y_low = (yh.abs() - yl.abs()) * (1.0 - 4.0 * U) - eps_y * U2 * o.m * M_GROWTH;
+        let q = self.h / yh;
+        let third_order = eps_y * (2.0 + self.lambda) * U * o.m;
+        if !(y_low > 0.0 && third_order <= y_low && q.abs() >= QUOTIENT_MIN && q.is_finite()) {
+            return Self::UNKNOWN;
+        }
+        let r = (-q).mul_add(yh, self.h);
+        let n = (-q).mul_add(yl, r + self.l);
+        Compensated {
+            h: q,
+            l: n / yh,
+            m: floored(q.abs().mul_add(o.m, self.m) / y_low),
+            lambda: max(self.lambda, o.lambda) + 4.0,
+        }
+    }
+
+    /// `h + l` renormalised, and the bound `λ² u² M` on its distance from the
+    /// exact value (zero only when `h + l` is exact: `λ = 0` or `M = 0`, as a
+    /// non-zero `M ≥ 2⁻⁹⁰⁰` and `λ ≥ 2` keep the product above the subnormal
+    /// range); `None` when nothing can be certified (overflow, or `λ` past
+    /// [`LAMBDA_MAX`]).
+    #[inline(always)]
+    fn settled(&self) -> Option<(f64, f64, f64)> {
+        let (s, c) = two_sum(self.h, self.l);
+        let bound = self.lambda * self.lambda * U2 * self.m * M_GROWTH;
+        let usable = s.is_finite() && c.is_finite() && bound.is_finite() && self.lambda <= LAMBDA_MAX;
+        usable.then_some((s, c, bound))
+    }
+
+    /// The exact value's sign, or `None` when the bound cannot decide it.
+    #[inline]
+    pub(crate) fn sign(&self) -> Option<Ordering> {
+        let (s, c, bound) = self.settled()?;
+        if bound == 0.0 {
+            // s + c is the exact value, and s has its sign (or both are zero).
+            return s.partial_cmp(&0.0);
+        }
+        let lower = (s.abs() - c.abs()) * (1.0 - 4.0 * U);
+        (lower > bound).then_some(if s > 0.0 {
+            Ordering::Greater
+        } else {
+            Ordering::Less
+        })
+    }
+
+    /// The exact value rounded to the nearest f64, or `None` when the bound
+    /// does not fit inside one rounding interval. An exact zero is `+0.0`.
+    #[inline]
+    pub(crate) fn round(&self) -> Option<f64> {
+        let (s, c, bound) = self.settled()?;
+        if bound == 0.0 {
+            // s + c is the exact value and TwoSum rounded it to nearest-even.
+            return Some(if s == 0.0 { 0.0 } else { s });
+        }
+        if s == 0.0 {
+            return None;
+        }
+        // The exact value is within |c| + bound of s; s is its rounding when
+        // that is under half the smaller gap to s's neighbours: 2^(e − 52) for
+        // 2^e < |s|, half that for |s| = 2^e (taken as 0 for a subnormal s,
+        // which is then not certified).
+        let bits = s.to_bits();
+        let ulp = f64::from_bits(bits & EXPONENT_BITS) * f64::EPSILON;
+        let gap = if bits & MANTISSA_BITS == 0 { 0.5 * ulp } else { ulp };
+        let slack = (c.abs() + bound) * (1.0 + 4.0 * U);
+        (2.0 * slack < gap).then_some(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+    use num_traits::Signed;
+
+    fn of(x: f64) -> BigRational {
+        BigRational::from_float(x).unwrap()
+    }
+
+    /// Checks (I1)–(I3) of a computed value against its exact value.
+    fn holds(v: &Compensated, exact: &BigRational, what: &str) {
+        if !(v.h.is_finite() && v.l.is_finite() && v.m.is_finite()) {
+            return; // nothing certified
+        }
+        let m = of(v.m * M_GROWTH);
+        assert!(exact.abs() <= m, "{what}: |x| > M: {v:?}");
+        assert!(
+            of(v.l).abs() <= of(v.lambda * U * v.m * M_GROWTH),
+            "{what}: |l| > λuM: {v:?}"
+        );
+        let error = (of(v.h) + of(v.l) - exact).abs();
+        let eps = v.lambda * v.lambda;
+        assert!(
+            error <= of(eps * U2 * v.m * M_GROWTH),
+            "{what}: error past λ²u²M: {v:?}"
+        );
+    }
+
+    /// SplitMix64 in [0, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn draw(&mut self, span: f64) -> f64 {
+            (self.next() - 0.5) * 2f64.powf((self.next() - 0.5) * 2.0 * span)
+        }
+    }
+
+    /// Random expression trees of sums, products and quotients, each node's
+    /// invariants checked against exact rationals, across exponent ranges that
+    /// reach the floor and overflow.
+    #[test]
+    fn the_invariants_hold_on_random_expression_trees() {
+        let mut rng = Rng(0x5eed);
+        let (mut certified, mut quotients) = (0, 0);
+        for case in 0..4_000 {
+            let span = [8.0, 120.0, 600.0][case % 3];
+            let mut pool: Vec<(Compensated, BigRational)> = (0..4)
+                .map(|k| {
+                    let x = if k == 0 && case % 7 == 0 {
+                        0.0
+                    } else {
+                        rng.draw(span)
+                    };
+                    (Compensated::exact(x), of(x))
+                })
+                .collect();
+            for step in 0..12 {
+                let i = (rng.next() * pool.len() as f64) as usize;
+                let j = (rng.next() * pool.len() as f64) as usize;
+                let (a, ea) = pool[i].clone();
+                let (b, eb) = pool[j].clone();
+                let (v, exact) = match (rng.next() * 4.0) as u32 {
+                    0 => (a.add(&b), &ea + &eb),
+                    1 => (a.sub(&b), &ea - &eb),
+                    2 => (a.mul(&b), &ea * &eb),
+                    _ => {
+                        if eb == of(0.0) {
+                            continue;
+                        }
+                        let q = a.div(&b);
+                        if q.h.is_finite() {
+                            quotients += 1;
+                        }
+                        (q, &ea / &eb)
+                    }
+                };
+                if !v.h.is_finite() || !v.m.is_finite() {
+                    continue;
+                }
+                holds(&v, &exact, &format!("case {case} step {step}"));
+                if let Some(r) = v.round() {
+                    certified += 1;
+                    assert_eq!(
+                        r,
+                        crate::exact::field::round_rational(&exact),
+                        "case {case} step {step}"
+                    );
+                }
+                if let Some(s) = v.sign() {
+                    assert_eq!(s, exact.cmp(&of(0.0)), "case {case} step {step}");
+                }
+                pool.push((v, exact));
+            }
+        }
+        assert!(certified > 20_000 && quotients > 5_000, "{certified} {quotients}");
+    }
+
+    #[test]
+    fn inputs_are_exact_and_operations_are_not_assumed_exact() {
+        let a = Compensated::exact(0.1);
+        assert_eq!(a.round(), Some(0.1));
+        assert_eq!(Compensated::exact(0.0).sign(), Some(Ordering::Equal));
+        assert_eq!(Compensated::exact(-0.0).round(), Some(0.0));
+        // An exact cancellation is not decided here (the tracked stage decides it).
+        let s = a.add(&Compensated::exact(0.2));
+        assert_eq!(s.sub(&s).sign(), None);
+        // 0.1 + 0.2 is exactly halfway between two doubles: a tie is never certified.
+        assert_eq!(s.round(), None);
+        let t = a.add(&Compensated::exact(0.7));
+        assert_eq!(t.round(), Some(0.1 + 0.7));
+        let third = Compensated::exact(1.0).div(&Compensated::exact(3.0));
+        assert_eq!(third.round(), Some(1.0 / 3.0));
+        // A product with a zero input is exactly zero (a sticking V_ct = −0 · v_ct).
+        let zero = Compensated::exact(0.0).mul(&third);
+        assert_eq!(zero.m, 0.0);
+        assert_eq!((zero.round(), zero.sign()), (Some(0.0), Some(Ordering::Equal)));
+        assert_eq!(zero.add(&third).round(), Some(1.0 / 3.0));
+        assert_eq!(zero.div(&third).round(), Some(0.0));
+    }
+
+    #[test]
+    fn overflow_and_tiny_quotients_certify_nothing() {
+        let big = Compensated::exact(1e300);
+        assert_eq!(big.mul(&big).round(), None);
+        assert_eq!(big.mul(&big).sign(), None);
+        let q = Compensated::exact(1e-300).div(&Compensated::exact(1e300));
+        assert_eq!(q.round(), None);
+        let nearly_zero = Compensated::exact(1.0)
+            .div(&Compensated::exact(3.0))
+            .mul(&Compensated::exact(3.0))
+            .sub(&Compensated::exact(1.0));
+        assert_eq!(Compensated::exact(1.0).div(&nearly_zero).round(), None);
+        // Subnormal dividend and divisor: the remainder underflows, and the
+        // answer is either certified right or not certified.
+        let tiny = f64::from_bits(1 << 14); // 2⁻¹⁰⁶⁰
+        let (x, y) = (3.0 * tiny, 7.0 * tiny);
+        let q = Compensated::exact(x)
+            .mul(&Compensated::exact(1.1))
+            .div(&Compensated::exact(y));
+        let exact = of(x) * of(1.1) / of(y);
+        if let Some(r) = q.round() {
+            assert_eq!(r, crate::exact::field::round_rational(&exact));
+        }
+        holds(&q, &exact, "subnormal quotient");
+    }
+}
