@@ -190,19 +190,24 @@ impl Compensated {
     }
 
     /// The quotient `x / y`. The divisor is first renormalised, `(h_y, l_y)`
-    /// with `|l_y| ≤ u |h_y|`, and bounded below by
-    /// `y_low = (|h_y| − |l_y|)(1 − 4u) − λ_y² u² M_y (1 + 2⁻⁴⁰) ≤ |y|`. Then
-    /// `q = h_x / h_y`, the remainder `r = h_x − q h_y` (exact, by one FMA),
-    /// `N = r + l_x − q l_y`, `l = N / h_y`, and `M_q = (M_x + |q| M_y) / y_low`,
-    /// which is at least `|x / y|`.
+    /// with `|l_y| ≤ u |h_y|`, so `|y| ≥ |h_y| (1 − δ)` with
+    /// `δ = (|l_y| + λ_y² u² M_y) / |h_y|`. With `i ≈ 1 / h_y` (one division) and
+    /// `d ≥ δ` computed through it, `y_low = 1 / i_low` where
+    /// `i_low = |i| (1 + 2d)(1 + 8u) ≥ 1 / |y|` (as `1 / (1 − δ) ≤ 1 + 2δ` for
+    /// `δ ≤ ½`; `d ≤ ¼` is checked), and `y_low ≤ |h_y|`. Then `q = h_x / h_y`
+    /// (the second division, correctly rounded), the remainder
+    /// `r = h_x − q h_y` (exact, by one FMA), `N = r + l_x − q l_y`, `l = N i`, and
+    /// `M_q = (M_x + |q| M_y) i_low`, which is at least `|x / y|`.
     ///
     /// `|r| ≤ u |q| |h_y|`, so `|N| ≤ (2 + λ_x) u y_low M_q` and
     /// `|l| ≤ (2 + λ_x) u M_q`. With `λ = max(λ_x, λ_y)`, the inherited errors give
     /// at most `λ² u² M_q` plus a third-order term `λ_y² (2 + λ_x) u (M_y / y_low) u² M_q`,
-    /// which is at most `u² M_q` where `λ_y² (2 + λ_x) u M_y ≤ y_low` (checked;
-    /// elsewhere nothing is certified). The two roundings in `N`, the one in
-    /// `l` and dividing by `h_y` rather than `h_y + l_y` add at most
-    /// `4 (2 + λ_x) u² M_q`. So `ε_q = λ² + 4λ + 11 ≤ (λ + 4)²`, and `λ_q = λ + 4`.
+    /// which is at most `u² M_q` where `λ_y² (2 + λ_x) u M_y i_low ≤ ½` (checked;
+    /// elsewhere nothing is certified). The two roundings in `N`, the two in
+    /// `l = N i` and using `h_y` rather than `h_y + l_y` add at most
+    /// `5 (2 + λ_x) u² M_q`; a remainder or `N` in the subnormal range is off by
+    /// at most 2⁻¹⁰⁷⁵ each, far below `u² M_x ≤ u² y_low M_q`. So
+    /// `ε_q = λ² + 5λ_x + 12 ≤ (λ + 4)²`, and `λ_q = λ + 4`.
     ///
     /// An exactly zero dividend gives an exact zero; a quotient below
     /// [`QUOTIENT_MIN`] (whose own rounding is not relative) certifies nothing.
@@ -211,19 +216,22 @@ impl Compensated {
             return Compensated::exact(0.0);
         }
         let (yh, yl) = two_sum(o.h, o.l);
-        let eps_y = o.lambda * o.lambda;
-        let y_low = (yh.abs() - yl.abs()) * (1.0 - 4.0 * U) - eps_y * U2 * o.m * M_GROWTH;
+        let inv = 1.0 / yh;
         let q = self.h / yh;
-        let third_order = eps_y * (2.0 + self.lambda) * U * o.m;
-        if !(y_low > 0.0 && third_order <= y_low && q.abs() >= QUOTIENT_MIN && q.is_finite()) {
+        let eps_y = o.lambda * o.lambda;
+        let d = (yl.abs() + eps_y * U2 * o.m * M_GROWTH) * inv.abs() * (1.0 + 8.0 * U);
+        let inv_low = inv.abs() * (1.0 + 2.0 * d) * (1.0 + 8.0 * U);
+        let third_order = eps_y * (2.0 + self.lambda) * U * o.m * inv_low;
+        let certified = d <= 0.25 && third_order <= 0.5 && q.abs() >= QUOTIENT_MIN && q.is_finite();
+        if !certified {
             return Self::UNKNOWN;
         }
         let r = (-q).mul_add(yh, self.h);
         let n = (-q).mul_add(yl, r + self.l);
         Compensated {
             h: q,
-            l: n / yh,
-            m: floored(q.abs().mul_add(o.m, self.m) / y_low),
+            l: n * inv,
+            m: floored(q.abs().mul_add(o.m, self.m) * inv_low),
             lambda: max(self.lambda, o.lambda) + 4.0,
         }
     }

@@ -110,6 +110,7 @@ struct Scene<'a, N> {
 }
 
 impl<'a, N: Field> Scene<'a, N> {
+    #[inline(always)]
     fn new(fast: &'a PlanarScene) -> Self {
         let m = N::of(fast.body.mass());
         let inertia = N::of(fast.body.inertia());
@@ -145,6 +146,7 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// `D(μ) k² = k² + d_c (d_c − μ d_d)`, refused unless `> 0`.
+    #[inline(always)]
     fn positive_dk2(&self, mu: f64, law: Input) -> Exact<N, N> {
         let dk2 = self.k2.add(&self.dc.mul(&self.dc.sub(&N::of(mu).mul(&self.dd))));
         if sign(&dk2)? == Ordering::Greater {
@@ -155,6 +157,7 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// `(Δn, Δt, ΔΩ, ΔV_ct)` for ratio `μ` with `Δn D(μ) k² = q_n k²` (Eqs 5–7).
+    #[inline(always)]
     fn ratio_parts(&self, qn: &N, mu: &N, dk2: &N) -> [N; 4] {
         let per = qn.div(dk2);
         // Central contact: D k² = k², so Δn = q_n exactly (a tie stays decidable).
@@ -170,6 +173,7 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// The answer for a prescribed ratio `μ` with restitution `e`.
+    #[inline(always)]
     fn ratio_answer(&self, e: &N, mu: f64, law: Input) -> Exact<N, Answer<N>> {
         let dk2 = self.positive_dk2(mu, law)?;
         let mu = N::of(mu);
@@ -187,6 +191,7 @@ impl<'a, N: Field> Scene<'a, N> {
 
     /// `S Δn = (k² + d_d²) q_n − d_c d_d q_t` and `S Δt = d_c d_d q_n − (k² + d_c²) q_t`:
     /// the impulses that change `v_cn` by `q_n` and `v_ct` by `−q_t`.
+    #[inline(always)]
     fn scaled_impulses(&self, qn: &N, qt: &N) -> (N, N) {
         let cross = &self.cross;
         (
@@ -199,6 +204,7 @@ impl<'a, N: Field> Scene<'a, N> {
     /// `Δn = [(k² + d_d²) q_n − d_c d_d q_t] / S`, `Δt = [d_c d_d q_n − (k² + d_c²) q_t] / S`,
     /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`. Its ratio
     /// `Δt / Δn` is set only where `Δn ≠ 0`.
+    #[inline(always)]
     fn target_answer(&self, e: &N, et: f64) -> Exact<N, Answer<N>> {
         let one = N::of(1.0);
         let qn = one.add(e).mul(&self.s);
@@ -226,12 +232,14 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// `1 / S`, formed once.
+    #[inline(always)]
     fn inv_total(&self) -> &N {
         self.inv_total.get_or_init(|| N::of(1.0).div(&self.total))
     }
 
     /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `V_ct = 0`
     /// (`q_t = v_ct`), `None` if its `Δn = 0`.
+    #[inline(always)]
     fn critical_ratio(&self, e: &N) -> Exact<N, Option<N>> {
         let qn = N::of(1.0).add(e).mul(&self.s);
         let (sdn, sdt) = self.scaled_impulses(&qn, &self.vct);
@@ -317,6 +325,7 @@ impl<'a, N: Field> Scene<'a, N> {
     /// The outcome of one answer: refuses energy creation (`T_L < 0`), rounds
     /// each output once. `T_L = −½ m [Δn (v_cn + V_cn) + Δt (v_ct + V_ct)]`.
     #[allow(clippy::too_many_arguments)] // each argument is one named part of the answer
+    #[inline(always)]
     fn assemble(
         &self,
         e: &N,
@@ -415,6 +424,7 @@ impl<'a, N: Field> Scene<'a, N> {
     /// (Eq 8), the final energy as their difference (the work form equals
     /// `T_0 − T_f` exactly, by the moment equation),
     /// `T_M = ½ m [k² (v_cn² + v_ct²) + (d_d v_cn + d_c v_ct)²] / S` and `T_L* = T_L / T_M`.
+    #[inline(always)]
     fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
         // ½ m and ½ I are exact (unless below the normal range, where the bound says so).
         let half_m = half::<N>().mul(&self.m);
