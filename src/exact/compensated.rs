@@ -104,6 +104,17 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - (s - bb)) + (b - bb))
 }
 
+/// Why a sign or a rounding was left undecided: the next stage is chosen by it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Unsettled {
+    /// Overflow, an ill-conditioned or tiny quotient, or `λ` past its limit:
+    /// double-double with a tracked bound may still decide.
+    Range,
+    /// The value lies too close to zero or to a rounding midpoint for the
+    /// bound: possibly exactly there, which only exact tracking decides.
+    Close,
+}
+
 /// A compensated value with its static bound; see the module documentation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Compensated {
@@ -242,40 +253,48 @@ impl Compensated {
     /// range); `None` when nothing can be certified (overflow, or `λ` past
     /// [`LAMBDA_MAX`]).
     #[inline(always)]
-    fn settled(&self) -> Option<(f64, f64, f64)> {
+    fn settled(&self) -> Result<(f64, f64, f64), Unsettled> {
         let (s, c) = two_sum(self.h, self.l);
         let bound = self.lambda * self.lambda * U2 * self.m * M_GROWTH;
         let usable = s.is_finite() && c.is_finite() && bound.is_finite() && self.lambda <= LAMBDA_MAX;
-        usable.then_some((s, c, bound))
+        if usable {
+            Ok((s, c, bound))
+        } else {
+            Err(Unsettled::Range)
+        }
     }
 
-    /// The exact value's sign, or `None` when the bound cannot decide it.
+    /// The exact value's sign, unless the bound cannot decide it.
     #[inline]
-    pub(crate) fn sign(&self) -> Option<Ordering> {
+    pub(crate) fn sign(&self) -> Result<Ordering, Unsettled> {
         let (s, c, bound) = self.settled()?;
         if bound == 0.0 {
             // s + c is the exact value, and s has its sign (or both are zero).
-            return s.partial_cmp(&0.0);
+            return s.partial_cmp(&0.0).ok_or(Unsettled::Range);
         }
         let lower = (s.abs() - c.abs()) * (1.0 - 4.0 * U);
-        (lower > bound).then_some(if s > 0.0 {
-            Ordering::Greater
+        if lower > bound {
+            Ok(if s > 0.0 {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            })
         } else {
-            Ordering::Less
-        })
+            Err(Unsettled::Close)
+        }
     }
 
-    /// The exact value rounded to the nearest f64, or `None` when the bound
-    /// does not fit inside one rounding interval. An exact zero is `+0.0`.
+    /// The exact value rounded to the nearest f64, unless the bound does not
+    /// fit inside one rounding interval. An exact zero is `+0.0`.
     #[inline]
-    pub(crate) fn round(&self) -> Option<f64> {
+    pub(crate) fn round(&self) -> Result<f64, Unsettled> {
         let (s, c, bound) = self.settled()?;
         if bound == 0.0 {
             // s + c is the exact value and TwoSum rounded it to nearest-even.
-            return Some(if s == 0.0 { 0.0 } else { s });
+            return Ok(if s == 0.0 { 0.0 } else { s });
         }
         if s == 0.0 {
-            return None;
+            return Err(Unsettled::Close);
         }
         // The exact value is within |c| + bound of s; s is its rounding when
         // that is under half the smaller gap to s's neighbours: 2^(e − 52) for
@@ -285,7 +304,13 @@ impl Compensated {
         let ulp = f64::from_bits(bits & EXPONENT_BITS) * f64::EPSILON;
         let gap = if bits & MANTISSA_BITS == 0 { 0.5 * ulp } else { ulp };
         let slack = (c.abs() + bound) * (1.0 + 4.0 * U);
-        (2.0 * slack < gap).then_some(s)
+        if 2.0 * slack < gap {
+            Ok(s)
+        } else if gap == 0.0 {
+            Err(Unsettled::Range)
+        } else {
+            Err(Unsettled::Close)
+        }
     }
 }
 
@@ -376,7 +401,7 @@ mod tests {
                     continue;
                 }
                 holds(&v, &exact, &format!("case {case} step {step}"));
-                if let Some(r) = v.round() {
+                if let Ok(r) = v.round() {
                     certified += 1;
                     assert_eq!(
                         r,
@@ -384,7 +409,7 @@ mod tests {
                         "case {case} step {step}"
                     );
                 }
-                if let Some(s) = v.sign() {
+                if let Ok(s) = v.sign() {
                     assert_eq!(s, exact.cmp(&of(0.0)), "case {case} step {step}");
                 }
                 pool.push((v, exact));
@@ -396,38 +421,41 @@ mod tests {
     #[test]
     fn inputs_are_exact_and_operations_are_not_assumed_exact() {
         let a = Compensated::exact(0.1);
-        assert_eq!(a.round(), Some(0.1));
-        assert_eq!(Compensated::exact(0.0).sign(), Some(Ordering::Equal));
-        assert_eq!(Compensated::exact(-0.0).round(), Some(0.0));
+        assert_eq!(a.round(), Ok(0.1));
+        assert_eq!(Compensated::exact(0.0).sign(), Ok(Ordering::Equal));
+        assert_eq!(Compensated::exact(-0.0).round(), Ok(0.0));
         // An exact cancellation is not decided here (the tracked stage decides it).
         let s = a.add(&Compensated::exact(0.2));
-        assert_eq!(s.sub(&s).sign(), None);
+        assert_eq!(s.sub(&s).sign(), Err(Unsettled::Close));
         // 0.1 + 0.2 is exactly halfway between two doubles: a tie is never certified.
-        assert_eq!(s.round(), None);
+        assert_eq!(s.round(), Err(Unsettled::Close));
         let t = a.add(&Compensated::exact(0.7));
-        assert_eq!(t.round(), Some(0.1 + 0.7));
+        assert_eq!(t.round(), Ok(0.1 + 0.7));
         let third = Compensated::exact(1.0).div(&Compensated::exact(3.0));
-        assert_eq!(third.round(), Some(1.0 / 3.0));
+        assert_eq!(third.round(), Ok(1.0 / 3.0));
         // A product with a zero input is exactly zero (a sticking V_ct = −0 · v_ct).
         let zero = Compensated::exact(0.0).mul(&third);
         assert_eq!(zero.m, 0.0);
-        assert_eq!((zero.round(), zero.sign()), (Some(0.0), Some(Ordering::Equal)));
-        assert_eq!(zero.add(&third).round(), Some(1.0 / 3.0));
-        assert_eq!(zero.div(&third).round(), Some(0.0));
+        assert_eq!((zero.round(), zero.sign()), (Ok(0.0), Ok(Ordering::Equal)));
+        assert_eq!(zero.add(&third).round(), Ok(1.0 / 3.0));
+        assert_eq!(zero.div(&third).round(), Ok(0.0));
     }
 
     #[test]
     fn overflow_and_tiny_quotients_certify_nothing() {
         let big = Compensated::exact(1e300);
-        assert_eq!(big.mul(&big).round(), None);
-        assert_eq!(big.mul(&big).sign(), None);
+        assert_eq!(big.mul(&big).round(), Err(Unsettled::Range));
+        assert_eq!(big.mul(&big).sign(), Err(Unsettled::Range));
         let q = Compensated::exact(1e-300).div(&Compensated::exact(1e300));
-        assert_eq!(q.round(), None);
+        assert_eq!(q.round(), Err(Unsettled::Range));
         let nearly_zero = Compensated::exact(1.0)
             .div(&Compensated::exact(3.0))
             .mul(&Compensated::exact(3.0))
             .sub(&Compensated::exact(1.0));
-        assert_eq!(Compensated::exact(1.0).div(&nearly_zero).round(), None);
+        assert_eq!(
+            Compensated::exact(1.0).div(&nearly_zero).round(),
+            Err(Unsettled::Range)
+        );
         // Subnormal dividend and divisor: the remainder underflows, and the
         // answer is either certified right or not certified.
         let tiny = f64::from_bits(1 << 14); // 2⁻¹⁰⁶⁰
@@ -436,7 +464,7 @@ mod tests {
             .mul(&Compensated::exact(1.1))
             .div(&Compensated::exact(y));
         let exact = of(x) * of(1.1) / of(y);
-        if let Some(r) = q.round() {
+        if let Ok(r) = q.round() {
             assert_eq!(r, crate::exact::field::round_rational(&exact));
         }
         holds(&q, &exact, "subnormal quotient");

@@ -11,12 +11,13 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 use super::bounded::Bounded;
-use super::compensated::Compensated;
+use super::compensated::{Compensated, Unsettled};
 
 /// A number the exact model can be evaluated in.
 pub(crate) trait Field: Clone {
-    /// How an undecided sign or rounding is reported: [`Undecided`] in
-    /// bounded arithmetic; uninhabited ([`Infallible`]) in exact arithmetic,
+    /// How an undecided sign or rounding is reported: [`Unsettled`] (with its
+    /// cause) in compensated arithmetic, [`Undecided`] in double-double;
+    /// uninhabited ([`Infallible`]) in exact arithmetic,
     /// which decides every sign and rounding.
     type Undecided;
     /// An f64 input, exactly.
@@ -36,7 +37,7 @@ pub(crate) trait Field: Clone {
 }
 
 impl Field for Compensated {
-    type Undecided = Undecided;
+    type Undecided = Unsettled;
     #[inline(always)]
     fn of(x: f64) -> Self {
         Self::exact(x)
@@ -62,12 +63,12 @@ impl Field for Compensated {
         Self::neg(self)
     }
     #[inline]
-    fn sign(&self) -> Result<Ordering, Undecided> {
-        Self::sign(self).ok_or(Undecided)
+    fn sign(&self) -> Result<Ordering, Unsettled> {
+        Self::sign(self)
     }
     #[inline]
-    fn round(&self) -> Result<f64, Undecided> {
-        Self::round(self).ok_or(Undecided)
+    fn round(&self) -> Result<f64, Unsettled> {
+        Self::round(self)
     }
     fn approx(&self) -> f64 {
         Self::approx(self)

@@ -31,7 +31,7 @@ mod model;
 use std::convert::Infallible;
 
 use self::bounded::Bounded;
-use self::compensated::Compensated;
+use self::compensated::{Compensated, Unsettled};
 use self::field::{Field, Fraction, Undecided};
 use self::model::{Fail, PlanarLaw as Law};
 use crate::error::{ImpactError, Input, Result, finite, in_range};
@@ -74,13 +74,15 @@ pub enum Stage {
     Rational,
 }
 
-/// Runs the model compensated (`compensated`); if that cannot decide, in
-/// double-double (`double_double`); if that cannot either, in double-double
-/// tracking exact operations (`tracked`: decides ties and cancelled zeros
-/// formed without a quotient); and last in exact fractions (`rational`),
-/// which decide everything: its undecided case is uninhabited.
+/// Runs the model compensated (`compensated`); if that cannot decide because
+/// of the range, in double-double (`double_double`); if that cannot decide
+/// either, or the compensated value was too close to a zero or a rounding
+/// midpoint (perhaps exactly on it), in double-double tracking exact
+/// operations (`tracked`: decides ties and cancelled zeros formed without a
+/// quotient); and last in exact fractions (`rational`), which decide
+/// everything: its undecided case is uninhabited.
 fn adaptive<T>(
-    compensated: impl FnOnce() -> std::result::Result<T, Fail<Undecided>>,
+    compensated: impl FnOnce() -> std::result::Result<T, Fail<Unsettled>>,
     double_double: impl FnOnce() -> std::result::Result<T, Fail<Undecided>>,
     tracked: impl FnOnce() -> std::result::Result<T, Fail<Undecided>>,
     rational: impl FnOnce() -> std::result::Result<T, Fail<Infallible>>,
@@ -90,10 +92,16 @@ fn adaptive<T>(
         Err(Fail::Refused(e)) => Some(Err(e)),
         Err(Fail::Undecided(Undecided)) => None,
     };
-    if let Some(answer) = settled(compensated()) {
-        return (answer, Stage::Compensated);
-    }
-    if let Some(answer) = settled(double_double()).or_else(|| settled(tracked())) {
+    let why = match compensated() {
+        Ok(v) => return (Ok(v), Stage::Compensated),
+        Err(Fail::Refused(e)) => return (Err(e), Stage::Compensated),
+        Err(Fail::Undecided(why)) => why,
+    };
+    let double_double = match why {
+        Unsettled::Range => settled(double_double()),
+        Unsettled::Close => None,
+    };
+    if let Some(answer) = double_double.or_else(|| settled(tracked())) {
         return (answer, Stage::DoubleDouble);
     }
     (decided(rational()), Stage::Rational)
