@@ -215,6 +215,8 @@ struct Tally {
     cases: usize,
     answered: usize,
     refused: usize,
+    /// Settled by the first, compensated stage (refusals of the inputs included).
+    compensated: usize,
     rational: usize,
     fast_flips: usize,
 }
@@ -226,6 +228,7 @@ fn check(name: &str, case: &Case, boundary: bool, tally: &mut Tally, errors: &mu
     let reference = case.reference();
     let (exact_answer, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
     tally.cases += 1;
+    tally.compensated += usize::from(stage == Stage::Compensated);
     tally.rational += usize::from(stage == Stage::Rational);
     match (&exact_answer, &reference) {
         (Ok(o), Ok(r)) => {

@@ -70,7 +70,7 @@ pub enum Stage {
     Compensated,
     /// Double-double with a certified error bound.
     DoubleDouble,
-    /// Exact rationals, after the double-double stage could not decide.
+    /// Exact rationals, after the compensated and double-double stages could not decide.
     Rational,
 }
 
@@ -245,7 +245,7 @@ pub fn solve_torsional(impact: &TorsionalImpact, energy: bool) -> Result<Torsion
     solve_torsional_staged(impact, energy).0
 }
 
-/// Solves one planar impact in exact rationals only (no double-double stage):
+/// Solves one planar impact in exact rationals only (no earlier stage):
 /// the pure rational evaluation, for comparisons and benchmarks.
 pub fn solve_planar_rational(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
     if law == PlanarLaw::PointMass {
