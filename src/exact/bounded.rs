@@ -1,5 +1,6 @@
 //! Double-double numbers carrying a rigorous bound on their distance from
-//! the exact value: the first, fast stage of `precision: "exact"`.
+//! the exact value: the second and third stages of `precision: "exact"`,
+//! for what the compensated stage ([`super::compensated`]) cannot decide.
 //!
 //! A [`Bounded`] `(hi, lo, err)` stands for an exact real `x` with
 //! `|x − (hi + lo)| ≤ err`. Sums and products use the error-free transformations
@@ -18,7 +19,7 @@
 //! [`TINY`] = 2⁻¹⁰⁶⁸, so a bound never underflows to a false zero. Overflow gives an
 //! infinity or NaN somewhere in `(hi, lo, err)`, and then nothing is certified.
 //! Whenever [`Bounded::sign`] or [`Bounded::round`] cannot decide, the caller
-//! falls back to exact rational arithmetic.
+//! goes on to the tracked pass (`Bounded<true>`) or to exact rational arithmetic.
 
 use std::cmp::Ordering;
 

@@ -3,16 +3,19 @@
 //! and refusal is the exact one.
 //!
 //! Adaptive precision in the manner of Shewchuk's robust predicates: the model
-//! ([`model`]) is written once over a [`field::Field`] and evaluated in up to
+//! (`model.rs`) is written once over a `Field` (`field.rs`) and evaluated in up to
 //! four arithmetics, each dearer and more decisive than the last:
 //!
-//! 1. [`compensated::Compensated`]: the plain f64 evaluation and its rounding
+//! 1. `Compensated` (`compensated.rs`): the plain f64 evaluation and its rounding
 //!    errors, gathered by error-free transformations, with a static error
-//!    bound (about 5× the fast mode; answers every typical input);
-//! 2. [`bounded::Bounded`] double-doubles with a bound tracked operation by
-//!    operation (ill-conditioned quotients, exponents near the ends of the range);
+//!    bound (4–5× the fast mode; answers every typical input);
+//! 2. `Bounded` (`bounded.rs`) double-doubles with a bound tracked operation by
+//!    operation, where stage 1 failed for range reasons (ill-conditioned
+//!    quotients, exponents near the ends of the range);
 //! 3. the same keeping exact sums and products exact (`Bounded<true>`: exact
-//!    rounding ties and cancelled zeros formed without a quotient);
+//!    rounding ties and cancelled zeros formed without a quotient), where
+//!    stage 2 failed or stage 1 found a value too close to a zero or a
+//!    rounding midpoint;
 //! 4. exact fractions of big integers, which always decide.
 //!
 //! When every sign the model decides and every output it rounds is certified,

@@ -41,7 +41,7 @@ pub struct Plot {
 
 impl Plot {
     /// Checks that the sweep can be plotted: a numeric first output and at most
-    /// [`MAX_SERIES`] series.
+    /// `MAX_SERIES` (64) series.
     pub fn check<C: SweepCase>(
         axis_names: &[&'static str],
         outputs: &[&'static str],
