@@ -351,9 +351,13 @@ impl<'a, N: Field> Scene<'a, N> {
             }
             .into());
         }
-        let vn = self.vn.add(&a.dn);
-        let vt = self.vt.add(&a.dt);
         let w = self.w.add(&a.dw);
+        // V_n = V_cn − d_c Ω and V_t = V_ct + d_d Ω (the definitions of the contact
+        // velocities), equal in exact arithmetic to v_n + Δn and v_t + Δt: formed
+        // so, a zero of V_ct (sticking) or of d_d, d_c stays structural and is
+        // decided without a quotient.
+        let vn = a.vcn.sub(&self.dc.mul(&w));
+        let vt = a.vct.add(&self.dd.mul(&w));
         let final_velocity = PlanarVelocity {
             normal: out(Output::FinalNormalVelocity, &vn)?,
             tangential: out(Output::FinalTangentialVelocity, &vt)?,
