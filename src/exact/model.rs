@@ -3,9 +3,14 @@
 //!
 //! Every output is formed as its exact value in the field and rounded once at
 //! the end; every regime decision is the exact sign of a field value. In the
-//! double-double field a sign or a rounding may be undecided
-//! ([`Fail::Undecided`]); the caller then repeats the whole answer in rationals,
-//! where that variant is uninhabited.
+//! compensated and double-double fields a sign or a rounding may be undecided
+//! ([`Fail::Undecided`]); the caller then repeats the whole answer in the next
+//! field, and last in rationals, where that variant is uninhabited.
+//!
+//! The model's steps are `#[inline(always)]`: the field values (four words in
+//! the compensated field) then stay in registers instead of being copied
+//! through the stack between steps, which took a fifth off the exact mode's
+//! time (docs/accuracy.md).
 //! Unlike the fast path, no formula here is chosen for its rounding: any
 //! algebraically equal form has the same exact value.
 
