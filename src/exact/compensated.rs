@@ -221,7 +221,8 @@ impl Compensated {
     /// `ε_q = λ² + 5λ_x + 12 ≤ (λ + 4)²`, and `λ_q = λ + 4`.
     ///
     /// An exactly zero dividend gives an exact zero; a quotient below
-    /// [`QUOTIENT_MIN`] (whose own rounding is not relative) certifies nothing.
+    /// [`QUOTIENT_MIN`] or a divisor above 2¹⁰²² (whose roundings are not
+    /// relative) certifies nothing.
     pub(crate) fn div(&self, o: &Self) -> Self {
         if self.m == 0.0 {
             return Compensated::exact(0.0);
@@ -233,7 +234,12 @@ impl Compensated {
         let d = (yl.abs() + eps_y * U2 * o.m * M_GROWTH) * inv.abs() * (1.0 + 8.0 * U);
         let inv_low = inv.abs() * (1.0 + 2.0 * d) * (1.0 + 8.0 * U);
         let third_order = eps_y * (2.0 + self.lambda) * U * o.m * inv_low;
-        let certified = d <= 0.25 && third_order <= 0.5 && q.abs() >= QUOTIENT_MIN && q.is_finite();
+        // A normal reciprocal is within u of 1 / h_y relative (not so above 2¹⁰²²).
+        let certified = d <= 0.25
+            && third_order <= 0.5
+            && inv.abs() >= f64::MIN_POSITIVE
+            && q.abs() >= QUOTIENT_MIN
+            && q.is_finite();
         if !certified {
             return Self::UNKNOWN;
         }
@@ -468,5 +474,10 @@ mod tests {
             assert_eq!(r, crate::exact::field::round_rational(&exact));
         }
         holds(&q, &exact, "subnormal quotient");
+        // A divisor near the top of the range has a subnormal reciprocal.
+        let q = Compensated::exact(3.0e300).div(&Compensated::exact(1.5e308));
+        assert_eq!(q.round(), Err(Unsettled::Range));
+        let q = Compensated::exact(3.0e300).div(&Compensated::exact(1.5e300));
+        assert_eq!(q.round(), Ok(2.0));
     }
 }
