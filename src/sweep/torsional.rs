@@ -6,7 +6,7 @@ use crate::exact::{self, Precision};
 use crate::sweep::planar::in_fast_range;
 use crate::torsional::{self, TorsionalImpact, TorsionalOutcome};
 
-/// The inputs of the torsional case an axis can set.
+/// The inputs of the torsional case: every one it reads, and an axis can set each.
 pub const TORSIONAL_INPUTS: [Input; 8] = [
     Input::Mass,
     Input::NormalInertia,
@@ -65,18 +65,7 @@ impl TorsionalColumn {
     }
 }
 
-/// The inputs a torsional impact reads, each with its value.
-const INPUTS: [Input; 8] = [
-    Input::Mass,
-    Input::NormalInertia,
-    Input::NormalVelocity,
-    Input::Spin,
-    Input::Restitution,
-    Input::TorsionalRestitution,
-    Input::TorsionalFriction,
-    Input::PitchRadius,
-];
-
+/// The value of one of the [`TORSIONAL_INPUTS`] (every input a torsional impact reads).
 fn get(p: &TorsionalImpact, input: Input) -> f64 {
     match input {
         Input::Mass => p.mass,
@@ -96,7 +85,9 @@ pub fn solve_torsional(
     energy: bool,
     precision: Precision,
 ) -> Result<TorsionalOutcome> {
-    let in_range = INPUTS.iter().all(|&input| in_fast_range(get(impact, input)));
+    let in_range = TORSIONAL_INPUTS
+        .iter()
+        .all(|&input| in_fast_range(get(impact, input)));
     solve_checked(impact, energy, precision, in_range)
 }
 
@@ -142,7 +133,7 @@ impl TorsionalSweep {
     /// only what `columns` need.
     pub fn new(base: &TorsionalImpact, swept: &[Input], columns: Vec<TorsionalColumn>) -> Self {
         let energy = columns.iter().any(|c| c.needs_energy());
-        let fixed_in_range = INPUTS
+        let fixed_in_range = TORSIONAL_INPUTS
             .iter()
             .all(|&input| swept.contains(&input) || in_fast_range(get(base, input)));
         TorsionalSweep {
@@ -150,7 +141,10 @@ impl TorsionalSweep {
             energy,
             precision: Precision::Fast,
             fixed_in_range,
-            swept: INPUTS.into_iter().filter(|input| swept.contains(input)).collect(),
+            swept: TORSIONAL_INPUTS
+                .into_iter()
+                .filter(|input| swept.contains(input))
+                .collect(),
         }
     }
 
