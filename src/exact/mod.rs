@@ -38,7 +38,7 @@ use self::compensated::{Compensated, Unsettled};
 use self::field::{Field, Fraction, Undecided};
 use self::model::{Fail, PlanarLaw as Law};
 use crate::error::{ImpactError, Input, Result, finite, in_range};
-use crate::normal::{NormalImpact, PointMass};
+use crate::normal::PointMass;
 use crate::planar::{Outputs, PlanarOutcome, Regime};
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
 use crate::sweep::planar::{PlanarLaw, PlanarPoint};
@@ -191,14 +191,7 @@ pub fn solve_planar_staged(
     outputs: Outputs,
 ) -> (Result<PlanarOutcome>, Stage) {
     if law == PlanarLaw::PointMass {
-        let impact = NormalImpact {
-            mass: p.mass,
-            inertia: None,
-            contact: None,
-            velocity: p.velocity,
-            restitution: p.restitution,
-        };
-        let v = match PointMass::validate(&impact) {
+        let v = match PointMass::validate(&p.point_mass_impact()) {
             Ok(v) => v,
             Err(e) => return (Err(e), Stage::Compensated),
         };

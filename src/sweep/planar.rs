@@ -82,6 +82,20 @@ pub struct PlanarPoint {
     pub kinetic: KineticRestitution,
 }
 
+impl PlanarPoint {
+    /// The point as a normal impact of a point mass (no inertia, no contact
+    /// offsets), the form `PlanarLaw::PointMass` is solved in.
+    pub fn point_mass_impact(&self) -> NormalImpact {
+        NormalImpact {
+            mass: self.mass,
+            inertia: None,
+            contact: None,
+            velocity: self.velocity,
+            restitution: self.restitution,
+        }
+    }
+}
+
 /// The inputs of the planar cases an axis can set.
 pub const PLANAR_INPUTS: [Input; 14] = [
     Input::Mass,
@@ -361,14 +375,7 @@ fn read_inputs(law: PlanarLaw) -> impl Iterator<Item = Input> {
 /// Solves one planar impact by the f64 closed forms.
 fn closed_forms(law: PlanarLaw, p: &PlanarPoint, outputs: Outputs) -> Result<PlanarOutcome> {
     if law == PlanarLaw::PointMass {
-        let impact = NormalImpact {
-            mass: p.mass,
-            inertia: None,
-            contact: None,
-            velocity: p.velocity,
-            restitution: p.restitution,
-        };
-        return normal::solve(&impact, outputs);
+        return normal::solve(&p.point_mass_impact(), outputs);
     }
     solve_in_scene(law, &scene(p)?, p, outputs)
 }
