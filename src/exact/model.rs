@@ -177,14 +177,20 @@ impl<'a, N: Field> Scene<'a, N> {
         [dn, dt, dw, lever.mul(&per)]
     }
 
-    /// The answer for a prescribed ratio `μ` with restitution `e`.
+    /// `q_n = (1 + e)(−v_cn)`: the change of `v_cn` that restitution `e` asks (Eq 1).
     #[inline(always)]
-    fn ratio_answer(&self, e: &N, mu: f64, law: Input) -> Exact<N, Answer<N>> {
+    fn normal_target(&self, e: &N) -> N {
+        N::of(1.0).add(e).mul(&self.s)
+    }
+
+    /// The answer for a prescribed ratio `μ` with restitution `e` (`q_n` its [`Scene::normal_target`]).
+    #[inline(always)]
+    fn ratio_answer(&self, e: &N, qn: &N, mu: f64, law: Input) -> Exact<N, Answer<N>> {
         let dk2 = self.positive_dk2(mu, law)?;
         let mu = N::of(mu);
-        let qn = N::of(1.0).add(e).mul(&self.s);
-        let [dn, dt, dw, dvct] = self.ratio_parts(&qn, &mu, &dk2);
+        let [dn, dt, dw, dvct] = self.ratio_parts(qn, &mu, &dk2);
         Ok(Answer {
+            qn: qn.clone(),
             dn,
             dt,
             dw,
@@ -210,11 +216,9 @@ impl<'a, N: Field> Scene<'a, N> {
     /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`. Its ratio
     /// `Δt / Δn` is set only where `Δn ≠ 0`.
     #[inline(always)]
-    fn target_answer(&self, e: &N, et: f64) -> Exact<N, Answer<N>> {
-        let one = N::of(1.0);
-        let qn = one.add(e).mul(&self.s);
-        let qt = one.add(&N::of(et)).mul(&self.vct);
-        let (sdn, sdt) = self.scaled_impulses(&qn, &qt);
+    fn target_answer(&self, e: &N, qn: &N, et: f64) -> Exact<N, Answer<N>> {
+        let qt = N::of(1.0).add(&N::of(et)).mul(&self.vct);
+        let (sdn, sdt) = self.scaled_impulses(qn, &qt);
         let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
         let inv_total = self.inv_total();
         Ok(Answer {
@@ -226,7 +230,8 @@ impl<'a, N: Field> Scene<'a, N> {
                 sdn.mul(inv_total)
             },
             dt: sdt.mul(inv_total),
-            dw: self.dc.mul(&qn).add(&self.dd.mul(&qt)).mul(inv_total),
+            dw: self.dc.mul(qn).add(&self.dd.mul(&qt)).mul(inv_total),
+            qn: qn.clone(),
             mu,
         })
     }
@@ -243,17 +248,17 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 
     /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `V_ct = 0`
-    /// (`q_t = v_ct`), `None` if its `Δn = 0`.
+    /// (`q_t = v_ct`) and changes `v_cn` by `q_n`, `None` if its `Δn = 0`.
     #[inline(always)]
-    fn critical_ratio(&self, e: &N) -> Exact<N, Option<N>> {
-        let qn = N::of(1.0).add(e).mul(&self.s);
-        let (sdn, sdt) = self.scaled_impulses(&qn, &self.vct);
+    fn critical_ratio(&self, qn: &N) -> Exact<N, Option<N>> {
+        let (sdn, sdt) = self.scaled_impulses(qn, &self.vct);
         Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
     }
 
     /// The bilinear law (Coulomb friction for `e_t = 0`).
     fn bilinear(&self, e: &N, f: f64, et: f64, capped: Regime, outputs: Outputs) -> Exact<N, PlanarOutcome> {
-        let target = self.target_answer(e, et)?;
+        let qn = self.normal_target(e);
+        let target = self.target_answer(e, &qn, et)?;
         let known_critical = (et == 0.0).then(|| target.mu.clone());
         let f_n = N::of(f);
         if let Some(mu_target) = &target.mu {
@@ -275,7 +280,7 @@ impl<'a, N: Field> Scene<'a, N> {
                 _ => 1.0,
             },
         };
-        let sliding = self.ratio_answer(e, direction * f + 0.0, Input::Friction)?;
+        let sliding = self.ratio_answer(e, &qn, direction * f + 0.0, Input::Friction)?;
         self.assemble(
             e,
             None,
@@ -309,6 +314,7 @@ impl<'a, N: Field> Scene<'a, N> {
             None => approach,
         };
         let answer = Answer {
+            qn: self.normal_target(&e),
             mu: Some(dt.div(&dn)),
             vcn: e.mul(&self.vcn).neg(),
             vct: self.vct.add(&dvct),
@@ -379,7 +385,7 @@ impl<'a, N: Field> Scene<'a, N> {
         let impulse_ratio = out(Output::ImpulseRatio, mu)?;
         let critical = match known_critical {
             Some(known) if outputs.critical_impulse_ratio || known.is_some() => Some(known),
-            None if outputs.critical_impulse_ratio => Some(self.critical_ratio(e)?),
+            None if outputs.critical_impulse_ratio => Some(self.critical_ratio(&a.qn)?),
             _ => None,
         };
         let critical_impulse_ratio = match critical {
@@ -461,6 +467,8 @@ impl<'a, N: Field> Scene<'a, N> {
 /// velocity and the impulse ratio (absent when `Δn = 0`).
 #[derive(Clone)]
 struct Answer<N> {
+    /// `q_n`, the change of `v_cn` (its `V_cn = v_cn + q_n`).
+    qn: N,
     dn: N,
     dt: N,
     dw: N,
@@ -480,7 +488,7 @@ pub(crate) fn planar<N: Field>(
     let e_n = N::of(e);
     match law {
         PlanarLaw::Frictionless => {
-            let answer = sc.ratio_answer(&e_n, 0.0, Input::Restitution)?;
+            let answer = sc.ratio_answer(&e_n, &sc.normal_target(&e_n), 0.0, Input::Restitution)?;
             sc.assemble(
                 &e_n,
                 None,
@@ -492,7 +500,7 @@ pub(crate) fn planar<N: Field>(
             )
         }
         PlanarLaw::Ratio(mu) => {
-            let answer = sc.ratio_answer(&e_n, mu, Input::ImpulseRatio)?;
+            let answer = sc.ratio_answer(&e_n, &sc.normal_target(&e_n), mu, Input::ImpulseRatio)?;
             sc.assemble(
                 &e_n,
                 None,
