@@ -256,8 +256,8 @@ impl Compensated {
     /// `h + l` renormalised, and the bound `λ² u² M` on its distance from the
     /// exact value (zero only when `h + l` is exact: `λ = 0` or `M = 0`, as a
     /// non-zero `M ≥ 2⁻⁹⁰⁰` and `λ ≥ 2` keep the product above the subnormal
-    /// range); `None` when nothing can be certified (overflow, or `λ` past
-    /// [`LAMBDA_MAX`]).
+    /// range); [`Unsettled::Range`] when nothing can be certified (overflow,
+    /// or `λ` past [`LAMBDA_MAX`]).
     #[inline(always)]
     fn settled(&self) -> Result<(f64, f64, f64), Unsettled> {
         let (s, c) = two_sum(self.h, self.l);

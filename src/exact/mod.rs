@@ -8,7 +8,7 @@
 //!
 //! 1. `Compensated` (`compensated.rs`): the plain f64 evaluation and its rounding
 //!    errors, gathered by error-free transformations, with a static error
-//!    bound (4–5× the fast mode; answers every typical input);
+//!    bound (about 5× the fast mode, docs/accuracy.md; answers every typical input);
 //! 2. `Bounded` (`bounded.rs`) double-doubles with a bound tracked operation by
 //!    operation, where stage 1 failed for range reasons (ill-conditioned
 //!    quotients, exponents near the ends of the range);
