@@ -9,49 +9,51 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use restitution::exact;
-use restitution::linear::{TangentialClosure, solve_momentum};
-use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Precision};
+use linear::{TangentialClosure, solve_momentum};
+use restitution::impact::{Arithmetic, solve_in};
+use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
 
-fn point() -> PlanarPoint {
-    PlanarPoint {
-        mass: 1.3,
-        inertia: 0.021,
-        contact: Contact {
+#[path = "../tests/common/linear.rs"]
+mod linear;
+
+fn impact() -> PlanarImpact {
+    PlanarImpact::rigid(
+        1.3,
+        0.021,
+        Contact {
             tangential_offset: 0.07,
             normal_offset: 0.11,
         },
-        velocity: PlanarVelocity {
+        PlanarVelocity {
             normal: -1.7,
             tangential: 0.9,
             angular: 2.3,
         },
-        restitution: 0.8,
-        friction: 0.3,
-        ..PlanarPoint::default()
-    }
+        Law::Friction {
+            restitution: 0.8,
+            friction: 0.3,
+        },
+    )
 }
 
 fn methods(c: &mut Criterion) {
-    let p = point();
-    let law = PlanarLaw::Friction;
+    let p = impact();
     let mut group = c.benchmark_group("coulomb_all_outputs");
     group.bench_function("fast", |b| {
-        b.iter(|| solve_point(law, black_box(&p), Outputs::ALL, Precision::Fast))
+        b.iter(|| solve(black_box(&p), Outputs::ALL, Precision::Fast))
     });
-    let scene = PlanarScene::new(Body::new(p.mass, p.inertia).unwrap(), p.contact, p.velocity).unwrap();
-    let answer = solve_point(law, &p, Outputs::ALL, Precision::Exact).unwrap();
+    let scene = p.scene().unwrap();
+    let answer = solve(&p, Outputs::ALL, Precision::Exact).unwrap();
     let closure = TangentialClosure::ImpulseRatio(answer.impulse_ratio);
     group.bench_function("nalgebra", |b| {
-        b.iter(|| solve_momentum(black_box(&scene), black_box(p.restitution), closure))
+        b.iter(|| solve_momentum(black_box(&scene), black_box(0.8), closure))
     });
     group.bench_function("exact", |b| {
-        b.iter(|| exact::solve_planar(law, black_box(&p), Outputs::ALL))
+        b.iter(|| solve(black_box(&p), Outputs::ALL, Precision::Exact))
     });
     group.sample_size(20);
     group.bench_function("rational", |b| {
-        b.iter(|| exact::solve_planar_rational(law, black_box(&p), Outputs::ALL))
+        b.iter(|| solve_in(black_box(&p), Outputs::ALL, Arithmetic::Rational))
     });
     group.finish();
 }

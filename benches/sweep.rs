@@ -4,69 +4,71 @@
 //! validation (this machine's limit for the model); and on every core.
 //!
 //! The torsional case (spin swept, every output) beside a bare loop over
-//! `torsional::solve`: the cost of the sweep's per-point checks.
+//! `restitution::solve`: the cost of the sweep's per-point checks.
 //!
 //! `cargo bench --bench sweep` (figures in docs/performance.md).
 
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
-use restitution::sweep::torsional::{TorsionalColumn, TorsionalSweep};
-use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
-use restitution::torsional::{self, TorsionalImpact};
-use restitution::{Contact, Input, PlanarVelocity};
+use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
+use restitution::{
+    Contact, Input, Law, Output, Outputs, PlanarBody, PlanarImpact, PlanarVelocity, Precision,
+    TorsionalImpact, solve,
+};
 
 const POINTS: u64 = 200_000;
 
-const ALL: [PlanarColumn; 19] = [
-    PlanarColumn::FinalNormalVelocity,
-    PlanarColumn::FinalTangentialVelocity,
-    PlanarColumn::FinalAngularVelocity,
-    PlanarColumn::InitialContactNormal,
-    PlanarColumn::InitialContactTangential,
-    PlanarColumn::FinalContactNormal,
-    PlanarColumn::FinalContactTangential,
-    PlanarColumn::NormalImpulse,
-    PlanarColumn::TangentialImpulse,
-    PlanarColumn::ImpulseRatio,
-    PlanarColumn::CriticalImpulseRatio,
-    PlanarColumn::Restitution,
-    PlanarColumn::KineticRestitution,
-    PlanarColumn::Regime,
-    PlanarColumn::InitialEnergy,
-    PlanarColumn::FinalEnergy,
-    PlanarColumn::EnergyLoss,
-    PlanarColumn::MaxEnergyLoss,
-    PlanarColumn::NormalizedEnergyLoss,
+const ALL: [Output; 19] = [
+    Output::FinalNormalVelocity,
+    Output::FinalTangentialVelocity,
+    Output::FinalAngularVelocity,
+    Output::InitialNormalContactVelocity,
+    Output::InitialTangentialContactVelocity,
+    Output::FinalNormalContactVelocity,
+    Output::FinalTangentialContactVelocity,
+    Output::NormalImpulse,
+    Output::TangentialImpulse,
+    Output::ImpulseRatio,
+    Output::CriticalImpulseRatio,
+    Output::Restitution,
+    Output::KineticRestitution,
+    Output::Regime,
+    Output::InitialEnergy,
+    Output::FinalEnergy,
+    Output::EnergyLoss,
+    Output::MaxEnergyLoss,
+    Output::NormalizedEnergyLoss,
 ];
 
 /// A non-central lamina (d_c ≠ 0) so that no special path applies.
-fn base() -> PlanarPoint {
-    PlanarPoint {
-        mass: 1.0,
-        inertia: 0.00125,
-        contact: Contact {
+fn base() -> PlanarImpact {
+    PlanarImpact::rigid(
+        1.0,
+        0.00125,
+        Contact {
             tangential_offset: 0.01,
             normal_offset: 0.05,
         },
-        velocity: PlanarVelocity {
+        PlanarVelocity {
             normal: -1.0,
             tangential: 0.0,
             angular: 2.0,
         },
-        restitution: 0.93,
-        friction: 0.123,
-        ..PlanarPoint::default()
-    }
+        Law::Friction {
+            restitution: 0.93,
+            friction: 0.123,
+        },
+    )
 }
 
-fn sweep(param: Input, columns: &[PlanarColumn], points: u64) -> Sweep<PlanarSweep> {
+fn sweep(param: Input, columns: &[Output], points: u64) -> Sweep<CaseSweep<PlanarImpact>> {
     let (start, stop) = match param {
         Input::Friction => (0.0, 1.0),
         _ => (-5.0, 5.0),
     };
-    let case = PlanarSweep::new(PlanarLaw::Friction, &base(), &[param], columns.to_vec());
+    let case =
+        CaseSweep::new(&base(), &[param], columns.to_vec(), Precision::Fast).expect("an input of the law");
     let axes = vec![Axis {
         param,
         values: AxisValues::Linspace {
@@ -79,7 +81,7 @@ fn sweep(param: Input, columns: &[PlanarColumn], points: u64) -> Sweep<PlanarSwe
 }
 
 /// Sums the first numeric cell of every row so nothing is optimised away.
-fn drive(s: &Sweep<PlanarSweep>, range: std::ops::Range<u64>) -> f64 {
+fn drive(s: &Sweep<CaseSweep<PlanarImpact>>, range: std::ops::Range<u64>) -> f64 {
     let mut sum = 0.0;
     s.for_each_in(range, |row| {
         if let Ok([Cell::Number(x), ..]) = row.outcome {
@@ -92,11 +94,25 @@ fn drive(s: &Sweep<PlanarSweep>, range: std::ops::Range<u64>) -> f64 {
 /// The Coulomb-friction closed form with no validation, no error paths and no
 /// special cases: the model's arithmetic alone.
 #[inline(never)]
-fn bare(p: &PlanarPoint) -> [f64; 9] {
-    let (m, k2) = (p.mass, p.inertia / p.mass);
-    let (dc, dd) = (p.contact.tangential_offset, p.contact.normal_offset);
+fn bare(p: &PlanarImpact) -> [f64; 9] {
+    let PlanarBody::Rigid {
+        mass: m,
+        inertia,
+        contact,
+    } = p.body
+    else {
+        return [f64::NAN; 9];
+    };
+    let Law::Friction {
+        restitution: e,
+        friction: f,
+    } = p.law
+    else {
+        return [f64::NAN; 9];
+    };
+    let k2 = inertia / m;
+    let (dc, dd) = (contact.tangential_offset, contact.normal_offset);
     let (vn, vt, w) = (p.velocity.normal, p.velocity.tangential, p.velocity.angular);
-    let (e, f) = (p.restitution, p.friction);
     let vcn = dc.mul_add(w, vn);
     let vct = (-dd).mul_add(w, vt);
     let qn = -(1.0 + e) * vcn;
@@ -137,10 +153,10 @@ fn single_core(c: &mut Criterion) {
     let all = sweep(Input::TangentialVelocity, &ALL, POINTS);
     let one = sweep(
         Input::TangentialVelocity,
-        &[PlanarColumn::FinalContactTangential],
+        &[Output::FinalTangentialContactVelocity],
         POINTS,
     );
-    let fixed = sweep(Input::Friction, &[PlanarColumn::FinalContactTangential], POINTS);
+    let fixed = sweep(Input::Friction, &[Output::FinalTangentialContactVelocity], POINTS);
     group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
     group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
     group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
@@ -165,7 +181,7 @@ fn all_cores(c: &mut Criterion) {
     group.sample_size(10);
     for (name, columns) in [
         ("all_outputs", &ALL[..]),
-        ("one_output", &[PlanarColumn::FinalContactTangential][..]),
+        ("one_output", &[Output::FinalTangentialContactVelocity][..]),
     ] {
         let s = sweep(Input::TangentialVelocity, columns, points);
         group.bench_with_input(BenchmarkId::new("run_parallel", name), &s, |b, s| {
@@ -204,15 +220,15 @@ fn torsional_one_core(c: &mut Criterion) {
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);
     let columns = vec![
-        TorsionalColumn::FinalNormalVelocity,
-        TorsionalColumn::FinalSpin,
-        TorsionalColumn::NormalImpulse,
-        TorsionalColumn::TorsionalImpulse,
-        TorsionalColumn::Regime,
-        TorsionalColumn::SwitchSpin,
-        TorsionalColumn::InitialEnergy,
-        TorsionalColumn::FinalEnergy,
-        TorsionalColumn::EnergyLoss,
+        Output::FinalNormalVelocity,
+        Output::FinalSpin,
+        Output::NormalImpulse,
+        Output::TorsionalImpulse,
+        Output::Regime,
+        Output::SwitchSpin,
+        Output::InitialEnergy,
+        Output::FinalEnergy,
+        Output::EnergyLoss,
     ];
     let axes = vec![Axis {
         param: Input::Spin,
@@ -223,7 +239,8 @@ fn torsional_one_core(c: &mut Criterion) {
         },
     }];
     let s = Sweep::new(
-        TorsionalSweep::new(&torsional_base(), &[Input::Spin], columns),
+        CaseSweep::new(&torsional_base(), &[Input::Spin], columns, Precision::Fast)
+            .expect("a torsional input"),
         torsional_base(),
         axes,
         Combine::Product,
@@ -247,7 +264,7 @@ fn torsional_one_core(c: &mut Criterion) {
             let mut impact = torsional_base();
             for i in 0..POINTS {
                 impact.spin = -50.0 + 100.0 * i as f64 / (POINTS - 1) as f64;
-                if let Ok(o) = torsional::solve(black_box(&impact), true) {
+                if let Ok(o) = solve(black_box(&impact), Outputs::ALL, Precision::Fast) {
                     sum += o.final_spin;
                 }
             }

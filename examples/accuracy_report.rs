@@ -21,13 +21,59 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
 
+use linear::{TangentialClosure, solve_momentum};
 use plotters::prelude::*;
-use restitution::exact;
-use restitution::linear::{TangentialClosure, solve_momentum};
-use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use restitution::sweep::torsional::solve_torsional;
-use restitution::torsional::TorsionalImpact;
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Precision, Regime};
+use restitution::impact::{Arithmetic, solve_in};
+use restitution::{
+    Body, Contact, Law, Outputs, PlanarImpact, PlanarScene, PlanarVelocity, Precision, Regime,
+    TorsionalImpact, solve,
+};
+
+#[path = "../tests/common/linear.rs"]
+mod linear;
+
+/// The planar laws the report measures (the numbers seed each law's inputs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    ImpulseRatio = 2,
+    Friction = 3,
+    TangentialRestitution = 4,
+}
+
+/// Every input of a planar impact; a law reads the ones it needs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct PlanarPoint {
+    mass: f64,
+    inertia: f64,
+    contact: Contact,
+    velocity: PlanarVelocity,
+    restitution: f64,
+    friction: f64,
+    impulse_ratio: f64,
+    tangential_restitution: f64,
+}
+
+impl PlanarPoint {
+    fn impact(&self, kind: Kind) -> PlanarImpact {
+        let restitution = self.restitution;
+        let law = match kind {
+            Kind::ImpulseRatio => Law::ImpulseRatio {
+                restitution,
+                impulse_ratio: self.impulse_ratio,
+            },
+            Kind::Friction => Law::Friction {
+                restitution,
+                friction: self.friction,
+            },
+            Kind::TangentialRestitution => Law::TangentialRestitution {
+                restitution,
+                friction: self.friction,
+                tangential_restitution: self.tangential_restitution,
+            },
+        };
+        PlanarImpact::rigid(self.mass, self.inertia, self.contact, self.velocity, law)
+    }
+}
 
 /// SplitMix64, so the report is reproducible.
 struct Rng(u64);
@@ -87,7 +133,7 @@ impl Set {
 }
 
 /// A planar input: the law and all inputs.
-fn planar_point(rng: &mut Rng, set: Set, law: PlanarLaw) -> PlanarPoint {
+fn planar_point(rng: &mut Rng, set: Set, law: Kind) -> PlanarPoint {
     let (mass, length, speed) = match set {
         Set::Typical => (rng.log(-1.0, 1.0), rng.log(-1.0, 0.0), rng.log(-1.0, 1.0)),
         Set::Stress => match (rng.next() * 3.0) as u32 {
@@ -136,7 +182,6 @@ fn planar_point(rng: &mut Rng, set: Set, law: PlanarLaw) -> PlanarPoint {
         friction: rng.range(0.0, 1.0),
         impulse_ratio: rng.range(-0.3, 0.3),
         tangential_restitution: rng.range(-1.0, 1.0),
-        ..PlanarPoint::default()
     };
     if set == Set::Stress && rng.next() < 0.3 {
         // f or μ at, or one ulp from, the capped ratio (μ_c for Coulomb).
@@ -144,7 +189,7 @@ fn planar_point(rng: &mut Rng, set: Set, law: PlanarLaw) -> PlanarPoint {
             friction: f64::MAX,
             ..p
         };
-        if let Ok(o) = exact::solve_planar(law, &probe, Outputs::MINIMAL) {
+        if let Ok(o) = solve(&probe.impact(law), Outputs::MINIMAL, Precision::Exact) {
             let at = o.impulse_ratio;
             let near = [at, at.next_up(), at.next_down()][(rng.next() * 3.0) as usize];
             p.friction = near.abs();
@@ -276,12 +321,14 @@ fn velocity_error(p: &PlanarPoint, got: &PlanarVelocity, reference: &PlanarVeloc
     Some(worst)
 }
 
-fn planar_rows(case: &'static str, law: PlanarLaw, set: Set, n: usize, rows: &mut Vec<Row>) {
+fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec<Row>) {
     let mut rng = Rng(0x5EED ^ (n as u64) ^ (law as u64) << 8 ^ (set as u64) << 16);
     let inputs: Vec<(PlanarPoint, PlanarVelocity, Option<TangentialClosure>)> = (0..n)
         .filter_map(|_| {
             let p = planar_point(&mut rng, set, law);
-            let reference = exact::solve_planar_rational(law, &p, Outputs::ALL).ok()?;
+            let reference = solve_in(&p.impact(law), Outputs::ALL, Arithmetic::Rational)
+                .0
+                .ok()?;
             let closure = match reference.regime {
                 Regime::Sticking | Regime::Restitution => Some(TangentialClosure::ContactVelocity(
                     reference.contact_velocity.r#final.tangential,
@@ -303,7 +350,7 @@ fn planar_rows(case: &'static str, law: PlanarLaw, set: Set, n: usize, rows: &mu
         &inputs,
         reps_fast as u32,
         |(p, _, _)| {
-            solve_point(law, p, Outputs::ALL, Precision::Fast)
+            solve(&p.impact(law), Outputs::ALL, Precision::Fast)
                 .ok()
                 .map(|o| o.final_velocity)
         },
@@ -328,7 +375,7 @@ fn planar_rows(case: &'static str, law: PlanarLaw, set: Set, n: usize, rows: &mu
         &inputs,
         (100 / scale) as u32,
         |(p, _, _)| {
-            exact::solve_planar(law, p, Outputs::ALL)
+            solve(&p.impact(law), Outputs::ALL, Precision::Exact)
                 .ok()
                 .map(|o| o.final_velocity)
         },
@@ -341,7 +388,8 @@ fn planar_rows(case: &'static str, law: PlanarLaw, set: Set, n: usize, rows: &mu
         &inputs,
         3,
         |(p, _, _)| {
-            exact::solve_planar_rational(law, p, Outputs::ALL)
+            solve_in(&p.impact(law), Outputs::ALL, Arithmetic::Rational)
+                .0
                 .ok()
                 .map(|o| o.final_velocity)
         },
@@ -354,7 +402,7 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
     let inputs: Vec<(TorsionalImpact, f64)> = (0..n)
         .filter_map(|_| {
             let impact = torsional_impact(&mut rng, set);
-            let reference = exact::solve_torsional_rational(&impact, true).ok()?;
+            let reference = solve_in(&impact, Outputs::ALL, Arithmetic::Rational).0.ok()?;
             Some((impact, reference.final_spin))
         })
         .collect();
@@ -370,7 +418,7 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
         &inputs,
         400 / scale,
         |(impact, _)| {
-            solve_torsional(impact, true, Precision::Fast)
+            solve(impact, Outputs::ALL, Precision::Fast)
                 .ok()
                 .map(|o| o.final_spin)
         },
@@ -382,7 +430,11 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
         "exact",
         &inputs,
         100 / scale,
-        |(impact, _)| exact::solve_torsional(impact, true).ok().map(|o| o.final_spin),
+        |(impact, _)| {
+            solve(impact, Outputs::ALL, Precision::Exact)
+                .ok()
+                .map(|o| o.final_spin)
+        },
         compare,
     ));
     rows.push(measure(
@@ -392,7 +444,8 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
         &inputs,
         3,
         |(impact, _)| {
-            exact::solve_torsional_rational(impact, true)
+            solve_in(impact, Outputs::ALL, Arithmetic::Rational)
+                .0
                 .ok()
                 .map(|o| o.final_spin)
         },
@@ -463,15 +516,9 @@ fn main() {
     let mut rows = Vec::new();
     for set in [Set::Typical, Set::Stress] {
         let n = if set == Set::Typical { 2000 } else { 600 };
-        planar_rows("prescribed μ", PlanarLaw::ImpulseRatio, set, n, &mut rows);
-        planar_rows("Coulomb f", PlanarLaw::Friction, set, n, &mut rows);
-        planar_rows(
-            "tangential e_t",
-            PlanarLaw::TangentialRestitution,
-            set,
-            n,
-            &mut rows,
-        );
+        planar_rows("prescribed μ", Kind::ImpulseRatio, set, n, &mut rows);
+        planar_rows("Coulomb f", Kind::Friction, set, n, &mut rows);
+        planar_rows("tangential e_t", Kind::TangentialRestitution, set, n, &mut rows);
         torsional_rows(set, n, &mut rows);
     }
     let mut table = String::new();

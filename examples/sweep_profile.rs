@@ -7,33 +7,34 @@
 //! callgrind_annotate --inclusive=yes callgrind.out | head -40
 //! ```
 
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
-use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
-use restitution::{Contact, Input, PlanarVelocity};
+use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
+use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision};
 
 fn main() {
-    let base = PlanarPoint {
-        mass: 1.0,
-        inertia: 0.00125,
-        contact: Contact {
+    let base = PlanarImpact::rigid(
+        1.0,
+        0.00125,
+        Contact {
             tangential_offset: 0.01,
             normal_offset: 0.05,
         },
-        velocity: PlanarVelocity {
+        PlanarVelocity {
             normal: -1.0,
             tangential: 0.0,
             angular: 2.0,
         },
-        restitution: 0.93,
-        friction: 0.123,
-        ..PlanarPoint::default()
-    };
+        Law::Friction {
+            restitution: 0.93,
+            friction: 0.123,
+        },
+    );
     let columns = vec![
-        PlanarColumn::FinalContactTangential,
-        PlanarColumn::CriticalImpulseRatio,
-        PlanarColumn::NormalizedEnergyLoss,
+        Output::FinalTangentialContactVelocity,
+        Output::CriticalImpulseRatio,
+        Output::NormalizedEnergyLoss,
     ];
-    let case = PlanarSweep::new(PlanarLaw::Friction, &base, &[Input::TangentialVelocity], columns);
+    let case = CaseSweep::new(&base, &[Input::TangentialVelocity], columns, Precision::Fast)
+        .expect("a rigid body reads its velocities");
     let axes = vec![Axis {
         param: Input::TangentialVelocity,
         values: AxisValues::Linspace {

@@ -16,7 +16,7 @@ mod validation;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use restitution::http::svg::{Curve, Figure, Markers};
+use restitution::plot::{Curve, Figure, Markers};
 use validation::{Dataset, Deviation, Quantity};
 
 const DOC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/validation.md");

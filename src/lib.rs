@@ -6,44 +6,45 @@
 //! friction give the final velocities, the impulses and the energy loss.
 //!
 //! The solver (every module but `http`) is pure: no I/O, no async, no
-//! allocation per impact. One module per physical case:
+//! allocation per impact. A request flows through:
 //!
-//! - [`normal`]: point mass or frictionless rigid body (section 2.1);
-//! - [`oblique`]: prescribed impulse ratio, Coulomb friction, or the
-//!   Appendix's kinetic restitution (Eqs 1–19, A-1…A-16);
-//! - [`tangential`]: the bilinear tangential-restitution model (Eqs 20–27);
-//! - [`torsional`]: the bilinear torsional model (Eqs 28–31);
-//! - [`exact`]: the `exact` precision mode, correctly rounded outputs by
-//!   double-double arithmetic with a certified bound and a rational fallback;
-//! - [`sweep`]: any case over a grid of inputs, in parallel, computing only
-//!   the chosen outputs;
+//! - [`impact`]: the front door. An impact of one case ([`PlanarImpact`] with
+//!   its [`Law`], [`TorsionalImpact`]) and [`solve`]: validation, the fast
+//!   range check, the choice of arithmetic, escalation to exact;
+//! - [`model`]: the laws of the paper written once, over any arithmetic
+//!   (Eqs 1–31, A-1…A-16);
+//! - [`arith`]: the arithmetics (plain f64 for `fast`; compensated,
+//!   double-double and exact fractions for `exact`);
 //!
-//! with the shared pieces in [`scene`] (frame, contact kinematics),
-//! [`planar`] (impulse answers, critical ratio, admissible ratios),
-//! [`energy`], [`linear`] (the nalgebra 3×3 cross-check) and [`error`].
+//! with the shared pieces in [`scene`] (frame, contact kinematics, `D(μ)`, the
+//! admissible impulse ratios), [`outcome`] (what an impact answers),
+//! [`quantity`] (every input and output with its symbol and path) and
+//! [`error`]. Around them: [`sweep`] (any case over a grid of inputs, in
+//! parallel, computing only the chosen outputs), [`fit`] (coefficients
+//! identified from measured impacts) and [`plot`] (SVG figures, with the
+//! `plot` feature).
 //!
 //! Conventions, derivations and every departure from the printed paper are in
 //! `docs/physics.md`.
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
-pub mod energy;
+pub(crate) mod arith;
 pub mod error;
-pub mod exact;
 pub mod fit;
-pub mod linear;
-pub mod normal;
-pub mod oblique;
-pub mod planar;
+pub mod impact;
+pub(crate) mod model;
+pub mod outcome;
+#[cfg(feature = "plot")]
+pub mod plot;
+pub mod quantity;
 pub mod scene;
 pub mod sweep;
-pub mod tangential;
-pub mod torsional;
 
 #[cfg(feature = "server")]
 pub mod http;
 
-pub use error::{AdmissibleInterval, ImpactError, Input, Output};
-pub use exact::Precision;
-pub use planar::{Outputs, PlanarOutcome, Regime};
+pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
+pub use impact::{Case, Law, PlanarBody, PlanarImpact, Precision, TorsionalImpact, solve};
+pub use outcome::{Outputs, PlanarOutcome, Regime, TorsionalOutcome};
 pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};

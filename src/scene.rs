@@ -6,7 +6,8 @@
 //! `ω` is positive in the sense that turns `n` toward `t`. Then the contact
 //! point moves with `v_cn = v_n + d_c ω` and `v_ct = v_t − d_d ω`.
 
-use crate::error::{ImpactError, Input, Output, Result, finite, finite_output, positive};
+use crate::arith::{Field, Fraction};
+use crate::error::{AdmissibleInterval, ImpactError, Input, Output, Result, finite, finite_output, positive};
 
 /// A rigid lamina: mass `m` and centroidal moment of inertia `I = m k²`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,7 +98,9 @@ impl PlanarScene {
     /// contact approaches the barrier (`v_cn = v_n + d_c ω < 0`).
     ///
     /// `v_cn` and `v_ct` are each evaluated with one fused multiply-add, so
-    /// their signs (which decide approach and slip direction) are exact.
+    /// their signs (which decide approach and slip direction) are exact, but
+    /// for a `v_cn` below the f64 range, whose sign is then decided in exact
+    /// arithmetic.
     pub fn new(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<Self> {
         finite(Input::TangentialOffset, contact.tangential_offset)?;
         finite(Input::NormalOffset, contact.normal_offset)?;
@@ -111,10 +114,12 @@ impl PlanarScene {
             tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
         };
         // A v_cn beyond the f64 range still has its sign: separating is decided first.
-        if contact_velocity.normal >= 0.0 {
+        let approaching = contact_velocity.normal < 0.0
+            || (contact_velocity.normal == 0.0 && below_range_approaching(contact, velocity));
+        if !approaching {
             return Err(ImpactError::NotApproaching {
                 input: Input::NormalVelocity,
-                normal_contact_velocity: contact_velocity.normal,
+                normal_contact_velocity: contact_velocity.normal + 0.0,
             });
         }
         finite_output(Output::InitialNormalContactVelocity, contact_velocity.normal)?;
@@ -129,24 +134,6 @@ impl PlanarScene {
             k2: body.gyration_squared(),
             contact_velocity,
         })
-    }
-
-    /// A scene whose fused `v_cn` rounded to zero although the exact `v_cn`
-    /// is negative (it lies below the f64 range); only [`crate::exact::scene`]
-    /// decides that.
-    pub(crate) fn approaching_below_range(body: Body, contact: Contact, velocity: PlanarVelocity) -> Self {
-        Self {
-            body,
-            contact,
-            velocity,
-            k2: body.gyration_squared(),
-            contact_velocity: ContactVelocity {
-                normal: contact
-                    .tangential_offset
-                    .mul_add(velocity.angular, velocity.normal),
-                tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
-            },
-        }
     }
 
     /// The body.
@@ -187,5 +174,139 @@ impl PlanarScene {
             normal_offset: dd,
         } = self.contact;
         dc.mul_add((-impulse_ratio).mul_add(dd, dc), self.k2)
+    }
+
+    /// The interval of impulse ratios `μ` whose answer is physical: `D(μ) > 0`
+    /// and `T_L(μ) ≥ 0`. It always contains `μ = 0`.
+    ///
+    /// `T_L(μ) D(μ)² k² · 2 / (m (1 + e) s)` is the quadratic
+    /// `Q(μ) = (1 − e) s (k² + d_c²) + 2 μ [e s d_c d_d − v_ct (k² + d_c²)]
+    ///        + μ² [2 v_ct d_c d_d − (1 + e) s (k² + d_d²)]`,
+    /// and `D` has its single root at `μ* = (k² + d_c²) / (d_c d_d)` where `Q < 0`,
+    /// so the set is one interval (possibly unbounded on one side).
+    pub fn admissible_interval(&self, e: f64) -> AdmissibleInterval {
+        let (dc, dd, k2) = (
+            self.contact.tangential_offset,
+            self.contact.normal_offset,
+            self.k2,
+        );
+        let s = -self.contact_velocity.normal;
+        let vct = self.contact_velocity.tangential;
+        let a = dc.mul_add(dc, k2);
+        let b = dc * dd;
+        let c = dd.mul_add(dd, k2);
+        let c0 = (1.0 - e) * s * a;
+        let c1 = 2.0 * (e * s).mul_add(b, -(vct * a));
+        let c2 = (2.0 * vct).mul_add(b, -((1.0 + e) * s * c));
+        let mut lower = f64::NEG_INFINITY;
+        let mut upper = f64::INFINITY;
+        if b != 0.0 {
+            let mu_star = a / b;
+            if mu_star > 0.0 {
+                upper = upper.min(mu_star);
+            } else {
+                lower = lower.max(mu_star);
+            }
+        }
+        if c2 != 0.0 {
+            let disc = c1.mul_add(c1, -4.0 * c2 * c0).max(0.0);
+            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+            let (mut r1, mut r2) = if q == 0.0 { (0.0, 0.0) } else { (q / c2, c0 / q) };
+            if r1 > r2 {
+                std::mem::swap(&mut r1, &mut r2);
+            }
+            if c2 < 0.0 {
+                lower = lower.max(r1);
+                upper = upper.min(r2);
+            } else if r1 >= 0.0 {
+                upper = upper.min(r1);
+            } else {
+                lower = lower.max(r2);
+            }
+        } else if c1 > 0.0 {
+            lower = lower.max(-c0 / c1);
+        } else if c1 < 0.0 {
+            upper = upper.min(-c0 / c1);
+        }
+        AdmissibleInterval {
+            lower: Some(lower).filter(|x| x.is_finite()),
+            upper: Some(upper).filter(|x| x.is_finite()),
+        }
+    }
+
+    /// The error for an answer with `D(μ) ≤ 0`.
+    pub(crate) fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError {
+        ImpactError::NoImpulseSolution {
+            input: law,
+            impulse_ratio: mu,
+            d: self.d(mu),
+        }
+    }
+}
+
+/// Whether the exact `v_cn = v_n + d_c ω` is negative, for a fused `v_cn` that
+/// rounded to zero (the exact value may lie below the f64 range).
+#[cold]
+fn below_range_approaching(contact: Contact, velocity: PlanarVelocity) -> bool {
+    let exact = Fraction::of(contact.tangential_offset)
+        .mul(&Fraction::of(velocity.angular))
+        .add(&Fraction::of(velocity.normal));
+    exact.sign() == Ok(std::cmp::Ordering::Less)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::{Law, PlanarImpact, Precision, solve};
+    use crate::outcome::Outputs;
+
+    fn scenes() -> impl Iterator<Item = PlanarScene> {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..1000).map(move |_| {
+            let k = 0.01 + unit();
+            let contact = Contact {
+                tangential_offset: 2.0 * unit() - 1.0,
+                normal_offset: 2.0 * unit() - 1.0,
+            };
+            let angular = 4.0 * unit() - 2.0;
+            let velocity = PlanarVelocity {
+                normal: -0.01 - unit() - contact.tangential_offset * angular,
+                tangential: 4.0 * unit() - 2.0,
+                angular,
+            };
+            PlanarScene::new(Body::new(1.0, k * k).unwrap(), contact, velocity).unwrap()
+        })
+    }
+
+    #[test]
+    fn the_admissible_interval_contains_zero_and_every_ratio_inside_it_is_answered() {
+        for scene in scenes() {
+            for e in [0.0, 0.5, 1.0] {
+                let interval = scene.admissible_interval(e);
+                assert!(interval.contains(0.0));
+                for bound in [interval.lower, interval.upper].into_iter().flatten() {
+                    let inside = bound * (1.0 - 1e-9);
+                    let body = scene.body();
+                    let impact = PlanarImpact::rigid(
+                        body.mass(),
+                        body.inertia(),
+                        scene.contact(),
+                        scene.velocity(),
+                        Law::ImpulseRatio {
+                            restitution: e,
+                            impulse_ratio: inside,
+                        },
+                    );
+                    let answer = solve(&impact, Outputs::MINIMAL, Precision::Exact);
+                    assert!(answer.is_ok(), "{scene:?} e {e} μ {inside}: {answer:?}");
+                }
+            }
+        }
     }
 }

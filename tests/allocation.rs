@@ -5,11 +5,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
-use restitution::sweep::torsional::{TorsionalColumn, TorsionalSweep};
-use restitution::sweep::{Axis, AxisValues, Combine, Sweep, SweepCase};
-use restitution::torsional::TorsionalImpact;
-use restitution::{Contact, Input, PlanarVelocity};
+use restitution::sweep::{Axis, AxisValues, CaseSweep, Combine, Sweep, SweepCase};
+use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision, TorsionalImpact};
 
 struct Counting;
 
@@ -36,30 +33,22 @@ fn allocations_for<C: SweepCase>(sweep: &Sweep<C>, points: u64) -> u64 {
     ALLOCATIONS.load(Ordering::Relaxed) - before
 }
 
-fn planar(law: PlanarLaw, param: Input, columns: Vec<PlanarColumn>) -> Sweep<PlanarSweep> {
-    let base = PlanarPoint {
-        mass: 1.0,
-        inertia: 0.00125,
-        contact: Contact {
+fn planar(law: Law, param: Input, columns: Vec<Output>) -> Sweep<CaseSweep<PlanarImpact>> {
+    let base = PlanarImpact::rigid(
+        1.0,
+        0.00125,
+        Contact {
             tangential_offset: 0.01,
             normal_offset: 0.05,
         },
-        velocity: PlanarVelocity {
+        PlanarVelocity {
             normal: -1.0,
             tangential: 0.3,
             angular: 2.0,
         },
-        restitution: 0.93,
-        friction: 0.123,
-        tangential_restitution: 0.34,
-        impulse_ratio: -0.05,
-        kinetic: restitution::oblique::KineticRestitution {
-            value: 0.9,
-            approach_impulse_ratio: -0.05,
-            rebound_impulse_ratio: -0.04,
-        },
-    };
-    let case = PlanarSweep::new(law, &base, &[param], columns);
+        law,
+    );
+    let case = CaseSweep::new(&base, &[param], columns, Precision::Fast).unwrap();
     // Values crossing regimes and invalid points (v_n > 0, f < 0) alike.
     let start = if param == Input::Friction { -0.001 } else { -5.0 };
     let axes = vec![Axis {
@@ -76,25 +65,44 @@ fn planar(law: PlanarLaw, param: Input, columns: Vec<PlanarColumn>) -> Sweep<Pla
 #[test]
 fn no_allocation_per_point() {
     let every = vec![
-        PlanarColumn::FinalContactTangential,
-        PlanarColumn::Regime,
-        PlanarColumn::CriticalImpulseRatio,
-        PlanarColumn::NormalizedEnergyLoss,
+        Output::FinalTangentialContactVelocity,
+        Output::Regime,
+        Output::CriticalImpulseRatio,
+        Output::NormalizedEnergyLoss,
     ];
+    let friction = Law::Friction {
+        restitution: 0.93,
+        friction: 0.123,
+    };
     let sweeps = [
-        planar(PlanarLaw::Friction, Input::TangentialVelocity, every.clone()),
+        planar(friction, Input::TangentialVelocity, every.clone()),
         planar(
-            PlanarLaw::TangentialRestitution,
+            Law::TangentialRestitution {
+                restitution: 0.93,
+                friction: 0.123,
+                tangential_restitution: 0.34,
+            },
             Input::TangentialVelocity,
             every.clone(),
         ),
         planar(
-            PlanarLaw::KineticRestitution,
+            Law::KineticRestitution {
+                value: 0.9,
+                approach_impulse_ratio: -0.05,
+                rebound_impulse_ratio: -0.04,
+            },
             Input::NormalVelocity,
             every.clone(),
         ),
-        planar(PlanarLaw::ImpulseRatio, Input::AngularVelocity, every.clone()),
-        planar(PlanarLaw::Friction, Input::Friction, vec![PlanarColumn::Regime]),
+        planar(
+            Law::ImpulseRatio {
+                restitution: 0.93,
+                impulse_ratio: -0.05,
+            },
+            Input::AngularVelocity,
+            every.clone(),
+        ),
+        planar(friction, Input::Friction, vec![Output::Regime]),
     ];
     for sweep in &sweeps {
         let small = allocations_for(sweep, 1_000);
@@ -113,11 +121,13 @@ fn no_allocation_per_point() {
         pitch_radius: 0.005,
     };
     let torsional = Sweep::new(
-        TorsionalSweep::new(
+        CaseSweep::new(
             &base,
             &[Input::Spin],
-            vec![TorsionalColumn::FinalSpin, TorsionalColumn::EnergyLoss],
-        ),
+            vec![Output::FinalSpin, Output::EnergyLoss],
+            Precision::Fast,
+        )
+        .unwrap(),
         base,
         vec![Axis {
             param: Input::Spin,

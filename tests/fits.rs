@@ -3,10 +3,11 @@
 
 mod common;
 
+use common::plain::tangential;
 use common::server::spawn_app;
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
+use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
 use serde_json::{Value, json};
 
 /// Maw's disc over a range of v_t, with a small deterministic perturbation.
@@ -107,7 +108,7 @@ async fn torsional_coefficients_are_recovered_over_http() {
     let observations: Vec<Value> = (0..20)
         .map(|i| {
             let spin = -50.0 + 5.5 * f64::from(i);
-            let impact = restitution::torsional::TorsionalImpact {
+            let impact = restitution::TorsionalImpact {
                 mass: 0.1,
                 normal_inertia: 3.6e-5,
                 normal_velocity: -3.0,
@@ -117,7 +118,7 @@ async fn torsional_coefficients_are_recovered_over_http() {
                 torsional_friction: 0.3,
                 pitch_radius: 0.005,
             };
-            let o = restitution::torsional::solve(&impact, false).unwrap();
+            let o = common::plain::torsional::solve(&impact, false).unwrap();
             json!({
                 "body": {"mass": 0.1, "normal_inertia": 3.6e-5}, "pitch_radius": 0.005,
                 "initial": {"normal": -3.0, "spin": spin},

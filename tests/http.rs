@@ -3,11 +3,12 @@
 use reqwest::StatusCode;
 mod common;
 
+use common::plain::oblique::{self, TangentialLaw};
+use common::plain::tangential;
+use common::plain::torsional::{self, TorsionalImpact};
 use common::server::spawn_app;
 use restitution::http::{ServiceConfig, openapi_json};
-use restitution::oblique::{self, TangentialLaw};
-use restitution::torsional::{self, TorsionalImpact};
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, tangential};
+use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
 use serde_json::{Value, json};
 
 /// The Maw steel disc: 1 kg, radius 0.05 m, e = 0.93, f = 0.123.
@@ -457,24 +458,25 @@ fn committed_openapi_document_is_up_to_date() {
 /// fast answer differs in the last place).
 #[tokio::test]
 async fn precision_is_chosen_echoed_and_exact_over_http() {
-    use restitution::Precision;
-    use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
+    use restitution::{Law, PlanarImpact, Precision};
     let app = spawn_app(ServiceConfig::default()).await;
-    let point = |vt: f64| PlanarPoint {
-        mass: 1.0,
-        inertia: 0.5 * 0.05 * 0.05,
-        contact: Contact::central(0.05),
-        velocity: PlanarVelocity {
-            normal: -1.0,
-            tangential: vt,
-            angular: 0.0,
-        },
-        restitution: 0.93,
-        friction: 0.123,
-        ..PlanarPoint::default()
+    let point = |vt: f64| {
+        PlanarImpact::rigid(
+            1.0,
+            0.5 * 0.05 * 0.05,
+            Contact::central(0.05),
+            PlanarVelocity {
+                normal: -1.0,
+                tangential: vt,
+                angular: 0.0,
+            },
+            Law::Friction {
+                restitution: 0.93,
+                friction: 0.123,
+            },
+        )
     };
-    let solve =
-        |vt: f64, p: Precision| solve_point(PlanarLaw::Friction, &point(vt), Outputs::ALL, p).unwrap();
+    let solve = |vt: f64, p: Precision| restitution::solve(&point(vt), Outputs::ALL, p).unwrap();
     let vt = (1..200)
         .map(|i| 0.37 * f64::from(i))
         .find(|&vt| {

@@ -4,10 +4,13 @@
 //! nalgebra 3×3 solve.
 
 use proptest::prelude::*;
-use restitution::linear::{TangentialClosure, solve_momentum};
-use restitution::oblique::{self, KineticRestitution, TangentialLaw};
-use restitution::torsional::{self, TorsionalImpact};
-use restitution::{Body, Contact, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity, tangential};
+mod common;
+
+use common::linear::{TangentialClosure, solve_momentum};
+use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use common::plain::tangential;
+use common::plain::torsional::{self, TorsionalImpact};
+use restitution::{Body, Contact, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
 
 fn scene_strategy() -> impl Strategy<Value = PlanarScene> {
     (
@@ -98,7 +101,7 @@ proptest! {
             prop_assert_eq!(out.restitution, out.kinetic_restitution);
         } else {
             // A refusal must be justified: the ratio is outside the admissible interval.
-            let interval = restitution::planar::admissible_interval(&scene, e);
+            let interval = scene.admissible_interval(e);
             let inside = interval.lower.is_none_or(|lo| mu > lo * (1.0 - 1e-9) + 1e-12)
                 && interval.upper.is_none_or(|hi| mu < hi * (1.0 - 1e-9) - 1e-12);
             prop_assert!(!inside || scene.d(mu) <= 1e-9, "refused inside {interval:?}: μ = {mu}");

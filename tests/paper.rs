@@ -1,8 +1,11 @@
 //! The paper's own numbers and printed special cases, derived and checked.
 
-use restitution::oblique::{self, KineticRestitution, TangentialLaw};
-use restitution::torsional::{self, TorsionalImpact, TorsionalRegime};
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Regime, tangential};
+mod common;
+
+use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use common::plain::tangential;
+use common::plain::torsional::{self, TorsionalImpact, TorsionalRegime};
+use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Regime};
 
 /// A uniform disc of radius ρ: k² = ρ²/2, so λ = ρ²/k² = 2.
 fn disc(rho: f64, vn: f64, vt: f64, w: f64) -> PlanarScene {

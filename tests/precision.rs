@@ -22,12 +22,11 @@ use common::Rng;
 use common::accuracy::{ALLOW_FLIP, BOUND_ULPS, Errors, Inputs, compare, kappa, refusal_kind};
 use common::reference::{self as reference, Outcome, Q, Refusal, q};
 use num_traits::{Signed, Zero};
-use restitution::exact::{self, Stage};
-use restitution::oblique::KineticRestitution;
-use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use restitution::sweep::torsional::solve_torsional;
-use restitution::torsional::TorsionalImpact;
-use restitution::{Contact, ImpactError, Output, Outputs, PlanarOutcome, PlanarVelocity, Precision, Regime};
+use restitution::impact::{Arithmetic, Stage, solve_in};
+use restitution::{
+    Contact, ImpactError, Output, Outputs, PlanarImpact, PlanarOutcome, PlanarVelocity, Precision, Regime,
+    TorsionalImpact, solve,
+};
 
 /// A planar law with its coefficients.
 #[derive(Clone, Copy, Debug)]
@@ -47,48 +46,46 @@ struct Case {
 }
 
 impl Case {
-    fn point(&self) -> (PlanarLaw, PlanarPoint) {
+    fn impact(&self) -> PlanarImpact {
         let i = &self.inp;
-        let mut p = PlanarPoint {
-            mass: i.m,
-            inertia: i.inertia,
-            contact: Contact {
+        let restitution = self.e;
+        let law = match self.law {
+            Law::Frictionless => restitution::Law::Frictionless { restitution },
+            Law::Ratio(impulse_ratio) => restitution::Law::ImpulseRatio {
+                restitution,
+                impulse_ratio,
+            },
+            Law::Friction(friction) => restitution::Law::Friction {
+                restitution,
+                friction,
+            },
+            Law::Tangential(friction, tangential_restitution) => restitution::Law::TangentialRestitution {
+                restitution,
+                friction,
+                tangential_restitution,
+            },
+            Law::Kinetic(value, approach_impulse_ratio, rebound_impulse_ratio) => {
+                restitution::Law::KineticRestitution {
+                    value,
+                    approach_impulse_ratio,
+                    rebound_impulse_ratio,
+                }
+            }
+        };
+        PlanarImpact::rigid(
+            i.m,
+            i.inertia,
+            Contact {
                 tangential_offset: i.dc,
                 normal_offset: i.dd,
             },
-            velocity: PlanarVelocity {
+            PlanarVelocity {
                 normal: i.vn,
                 tangential: i.vt,
                 angular: i.w,
             },
-            restitution: self.e,
-            ..PlanarPoint::default()
-        };
-        let law = match self.law {
-            Law::Frictionless => PlanarLaw::Frictionless,
-            Law::Ratio(mu) => {
-                p.impulse_ratio = mu;
-                PlanarLaw::ImpulseRatio
-            }
-            Law::Friction(f) => {
-                p.friction = f;
-                PlanarLaw::Friction
-            }
-            Law::Tangential(f, et) => {
-                p.friction = f;
-                p.tangential_restitution = et;
-                PlanarLaw::TangentialRestitution
-            }
-            Law::Kinetic(r, mu_a, mu_r) => {
-                p.kinetic = KineticRestitution {
-                    value: r,
-                    approach_impulse_ratio: mu_a,
-                    rebound_impulse_ratio: mu_r,
-                };
-                PlanarLaw::KineticRestitution
-            }
-        };
-        (law, p)
+            law,
+        )
     }
 
     fn is_finite(&self) -> bool {
@@ -224,9 +221,9 @@ struct Tally {
 /// Checks both modes on one case. `boundary`: the set sits on a decision
 /// boundary, where the fast mode's rounded decision may differ from the exact one.
 fn check(name: &str, case: &Case, boundary: bool, tally: &mut Tally, errors: &mut Errors) {
-    let (law, point) = case.point();
+    let impact = case.impact();
     let reference = case.reference();
-    let (exact_answer, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
+    let (exact_answer, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
     tally.cases += 1;
     tally.compensated += usize::from(stage == Stage::Compensated);
     tally.rational += usize::from(stage == Stage::Rational);
@@ -260,7 +257,7 @@ fn check(name: &str, case: &Case, boundary: bool, tally: &mut Tally, errors: &mu
         }
         (a, r) => panic!("{name}: exact {a:?} but reference {r:?} for {case:?}"),
     }
-    let fast = solve_point(law, &point, Outputs::ALL, Precision::Fast);
+    let fast = solve(&impact, Outputs::ALL, Precision::Fast);
     match (&fast, &reference) {
         (Ok(o), Ok(r)) => {
             errors.answered += 1;
@@ -366,8 +363,8 @@ fn capped_ratio(case: &Case, et: f64) -> Option<f64> {
         law: Law::Tangential(f64::MAX, et),
         ..*case
     };
-    let (law, point) = probe.point();
-    exact::solve_planar(law, &point, Outputs::MINIMAL)
+    let impact = probe.impact();
+    solve(&impact, Outputs::MINIMAL, Precision::Exact)
         .ok()
         .map(|o| o.impulse_ratio)
 }
@@ -570,8 +567,8 @@ fn exact_zeros_are_positive_zero() {
         e: 0.0,
         law: Law::Friction(10.0),
     };
-    let (law, point) = case.point();
-    let (o, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
+    let impact = case.impact();
+    let (o, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
     let o = o.unwrap();
     assert_eq!(o.regime, Regime::Sticking);
     assert_eq!(o.contact_velocity.r#final.tangential.to_bits(), 0.0f64.to_bits());
@@ -582,11 +579,8 @@ fn exact_zeros_are_positive_zero() {
     assert_eq!(stage, Stage::Compensated);
     // With e > 0 the structural zero V_ct = −0 · v_ct is still certified in the
     // compensated stage (a product with an exact zero is exact).
-    let point = PlanarPoint {
-        restitution: 0.5,
-        ..point
-    };
-    let (o, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
+    let impact = Case { e: 0.5, ..case }.impact();
+    let (o, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
     assert_eq!(
         o.unwrap().contact_velocity.r#final.tangential.to_bits(),
         0.0f64.to_bits()
@@ -609,8 +603,8 @@ fn exact_zeros_are_positive_zero() {
         e: 0.0,
         law: Law::Tangential(10.0, 0.0),
     };
-    let (law, point) = case.point();
-    let (o, stage) = exact::solve_planar_staged(law, &point, Outputs::ALL);
+    let impact = case.impact();
+    let (o, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
     assert_eq!(o.unwrap().final_velocity.angular.to_bits(), 0.0f64.to_bits());
     assert_eq!(stage, Stage::Rational);
 }
@@ -663,7 +657,7 @@ fn exact_torsional_is_correctly_rounded_under_stress() {
             ("T_f", &half * &qi * &spin_x * &spin_x),
             ("T_L", loss_x),
         ];
-        let (answer, stage) = exact::solve_torsional_staged(&impact, true);
+        let (answer, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
         rational += usize::from(stage == Stage::Rational);
         match answer {
             Ok(o) => {
@@ -691,7 +685,7 @@ fn exact_torsional_is_correctly_rounded_under_stress() {
             }
             Err(e) => panic!("exact torsional refused {e} for {impact:?}"),
         }
-        let fast = solve_torsional(&impact, true, Precision::Fast);
+        let fast = solve(&impact, Outputs::ALL, Precision::Fast);
         if let Ok(o) = fast {
             assert!(o.final_spin.is_finite() && o.energy.unwrap().loss.is_finite());
         }
@@ -709,16 +703,7 @@ fn exact_point_mass_is_correctly_rounded_over_the_whole_range() {
             rng.log_uniform(-300.0, 300.0) * rng.pick(&[-1.0, 1.0]),
         );
         let e = random_e(&mut rng);
-        let point = PlanarPoint {
-            mass: m,
-            velocity: PlanarVelocity {
-                normal: vn,
-                tangential: vt,
-                angular: 0.0,
-            },
-            restitution: e,
-            ..PlanarPoint::default()
-        };
+        let point = PlanarImpact::point_mass(m, vn, vt, e);
         let (qm, qvn, qvt, qe) = (q(m), q(vn), q(vt), q(e));
         let half = q(0.5);
         let initial = &half * &qm * (&qvn * &qvn + &qvt * &qvt);
@@ -731,7 +716,7 @@ fn exact_point_mass_is_correctly_rounded_over_the_whole_range() {
             ("T_L*", &loss / &initial),
             ("μ_c", &qvt / ((q(1.0) + &qe) * &qvn)),
         ];
-        match exact::solve_planar(PlanarLaw::PointMass, &point, Outputs::ALL) {
+        match solve(&point, Outputs::ALL, Precision::Exact) {
             Ok(o) => {
                 let energy = o.energy.unwrap();
                 let got = [

@@ -16,8 +16,9 @@ use common::accuracy::{ALLOW_FLIP, BOUND_ULPS, Errors, Inputs, compare, kappa, r
 use common::reference::{self as exact, Outcome, Refusal, q, ulps};
 use num_traits::Signed;
 
-use restitution::oblique::{self, KineticRestitution, TangentialLaw};
-use restitution::{Contact, ImpactError, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity, tangential};
+use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use common::plain::tangential;
+use restitution::{Contact, ImpactError, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
 
 /// Runs one case over `n` random scenes; `law` gives the fast and exact answers.
 fn run_case(
@@ -81,7 +82,7 @@ fn prescribed_ratio_matches_the_exact_reference() {
     run_case("prescribed μ", 1, 3000, |rng, inp, scene| {
         let e = random_e(rng);
         // Mostly inside the admissible interval, sometimes outside it.
-        let interval = restitution::planar::admissible_interval(scene, e);
+        let interval = scene.admissible_interval(e);
         let lo = interval.lower.unwrap_or(-2.0).max(-2.0);
         let hi = interval.upper.unwrap_or(2.0).min(2.0);
         let mu = if rng.chance(0.8) {
@@ -143,7 +144,7 @@ fn kinetic_restitution_matches_the_exact_reference() {
 fn frictionless_normal_impact_matches_the_exact_reference() {
     run_case("frictionless", 5, 2000, |rng, inp, _scene| {
         let e = random_e(rng);
-        let impact = restitution::normal::NormalImpact {
+        let impact = common::plain::normal::NormalImpact {
             mass: inp.m,
             inertia: Some(inp.inertia),
             contact: Some(Contact {
@@ -157,7 +158,7 @@ fn frictionless_normal_impact_matches_the_exact_reference() {
             },
             restitution: e,
         };
-        let fast = restitution::normal::solve(&impact, Outputs::ALL);
+        let fast = common::plain::normal::solve(&impact, Outputs::ALL);
         (fast, exact::frictionless(&inp.exact(), e))
     });
 }
@@ -179,7 +180,7 @@ fn torsional_matches_the_exact_reference() {
         } else {
             rng.pick(&[switch, -switch])
         };
-        let impact = restitution::torsional::TorsionalImpact {
+        let impact = restitution::TorsionalImpact {
             mass: m,
             normal_inertia: i_n,
             normal_velocity: vn,
@@ -189,7 +190,7 @@ fn torsional_matches_the_exact_reference() {
             torsional_friction: mu_z,
             pitch_radius: rho,
         };
-        let Ok(fast) = restitution::torsional::solve(&impact, true) else {
+        let Ok(fast) = common::plain::torsional::solve(&impact, true) else {
             continue;
         };
         let (spin_x, moment_x, regime, switch_x, loss_x) =
@@ -228,7 +229,7 @@ fn point_mass_matches_the_exact_reference() {
             speed * rng.range(-2.0, 2.0),
             random_e(&mut rng),
         );
-        let impact = restitution::normal::NormalImpact {
+        let impact = common::plain::normal::NormalImpact {
             mass: m,
             inertia: None,
             contact: None,
@@ -239,7 +240,7 @@ fn point_mass_matches_the_exact_reference() {
             },
             restitution: e,
         };
-        let fast = restitution::normal::solve(&impact, Outputs::ALL).unwrap();
+        let fast = common::plain::normal::solve(&impact, Outputs::ALL).unwrap();
         let (qm, qvn, qvt, qe) = (q(m), q(vn), q(vt), q(e));
         let one = q(1.0);
         let final_vn = -(&qe * &qvn);

@@ -10,7 +10,6 @@ use std::time::Duration;
 use common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
-use restitution::http::sweeps::active_streams;
 use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
@@ -329,10 +328,10 @@ async fn a_reader_that_stops_reading_a_stream_is_dropped_and_its_work_stops() {
     let mut first = vec![0u8; 4096];
     let n = timeout(BOUND, stream.read(&mut first)).await.unwrap().unwrap();
     assert!(String::from_utf8_lossy(&first[..n]).starts_with("HTTP/1.1 200"));
-    assert_eq!(active_streams(), 1);
+    assert_eq!(app.streams.active(), 1);
     // Stop reading, keep the connection open.
     let stopped = timeout(BOUND, async {
-        while active_streams() > 0 {
+        while app.streams.active() > 0 {
             tokio::time::sleep(Duration::from_millis(20)).await;
         }
     })

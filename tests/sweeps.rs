@@ -7,10 +7,8 @@ use std::time::{Duration, Instant};
 
 use common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
-use restitution::Precision;
 use restitution::http::ServiceConfig;
-use restitution::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use restitution::{Contact, Outputs, PlanarVelocity};
+use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
 use serde_json::{Value, json};
 
 fn maw_base() -> Value {
@@ -22,21 +20,22 @@ fn maw_base() -> Value {
     })
 }
 
-fn maw_point(vt: f64, f: f64) -> PlanarPoint {
-    PlanarPoint {
-        mass: 1.0,
-        inertia: 0.00125,
-        contact: Contact::central(0.05),
-        velocity: PlanarVelocity {
+fn maw_point(vt: f64, f: f64) -> PlanarImpact {
+    PlanarImpact::rigid(
+        1.0,
+        0.00125,
+        Contact::central(0.05),
+        PlanarVelocity {
             normal: -1.0,
             tangential: vt,
             angular: 0.0,
         },
-        restitution: 0.93,
-        friction: f,
-        tangential_restitution: 0.34,
-        ..PlanarPoint::default()
-    }
+        Law::TangentialRestitution {
+            restitution: 0.93,
+            friction: f,
+            tangential_restitution: 0.34,
+        },
+    )
 }
 
 fn two_axis_sweep() -> Value {
@@ -85,13 +84,7 @@ async fn json_table_is_in_product_order_and_matches_the_library_bit_for_bit() {
         // The first axis varies slowest; linspace(−1, 5, 61) steps by exactly 0.1 (one rounding).
         assert_eq!(f, frictions[i % 3]);
         assert_eq!(vt, ((i / 3) as f64).mul_add(0.1, -1.0));
-        let expected = solve_point(
-            PlanarLaw::TangentialRestitution,
-            &maw_point(vt, f),
-            Outputs::ALL,
-            Precision::Fast,
-        )
-        .unwrap();
+        let expected = solve(&maw_point(vt, f), Outputs::ALL, Precision::Fast).unwrap();
         assert_eq!(
             row[2].as_f64().unwrap().to_bits(),
             expected.contact_velocity.r#final.tangential.to_bits()
@@ -178,13 +171,7 @@ async fn zip_pairs_axes_and_refuses_unequal_lengths() {
     );
     let row = &table["rows"][2];
     assert_eq!((row[0].as_f64(), row[1].as_f64()), (Some(2.0), Some(0.2)));
-    let expected = solve_point(
-        PlanarLaw::TangentialRestitution,
-        &maw_point(2.0, 0.2),
-        Outputs::ALL,
-        Precision::Fast,
-    )
-    .unwrap();
+    let expected = solve(&maw_point(2.0, 0.2), Outputs::ALL, Precision::Fast).unwrap();
     assert_eq!(row[3].as_f64().unwrap(), expected.final_velocity.tangential);
 
     body["axes"][1]["values"] = json!([0.1, 0.2]);

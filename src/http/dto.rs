@@ -5,10 +5,10 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use crate::exact::Precision;
-use crate::planar::{PlanarOutcome, Regime};
+use crate::impact::Precision;
+use crate::outcome::{PlanarOutcome, Regime};
+use crate::outcome::{TorsionalOutcome, TorsionalRegime};
 use crate::scene::{Contact, ContactVelocity, PlanarVelocity};
-use crate::torsional::{TorsionalOutcome, TorsionalRegime};
 
 /// Arithmetic precision of an answer.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
@@ -234,7 +234,7 @@ pub struct PlanarResponse {
 impl PlanarResponse {
     /// Maps a solver outcome computed with every output in `precision`.
     pub fn from_outcome(o: &PlanarOutcome, precision: Precision) -> Self {
-        let energy = o.energy.unwrap_or(crate::energy::PlanarEnergy {
+        let energy = o.energy.unwrap_or(crate::outcome::PlanarEnergy {
             initial: 0.0,
             r#final: 0.0,
             loss: 0.0,
@@ -332,7 +332,7 @@ pub struct TorsionalResponse {
 impl TorsionalResponse {
     /// Maps a solver outcome computed with energies in `precision`.
     pub fn from_outcome(o: &TorsionalOutcome, precision: Precision) -> Self {
-        let energy = o.energy.unwrap_or(crate::torsional::RotationalEnergy {
+        let energy = o.energy.unwrap_or(crate::outcome::RotationalEnergy {
             initial: 0.0,
             r#final: 0.0,
             loss: 0.0,

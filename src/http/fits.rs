@@ -5,13 +5,22 @@ use axum::Json;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
 
 use super::dto::{ContactDto, RegimeDto, RigidBodyDto, TorsionalRegimeDto, VelocityDto};
 use super::extract::ApiJson;
-use super::impacts::{ImpactProblems, TorsionalBodyDto};
-use super::problem::ApiError;
+use super::impacts::TorsionalBodyDto;
+use super::problem::{ApiError, Problems};
 use crate::fit::{self, Estimate, FitError, Observation, TorsionalObservation};
 use crate::scene::Body;
+
+/// The fit endpoints, with their OpenAPI operations.
+pub fn router() -> OpenApiRouter {
+    OpenApiRouter::new()
+        .routes(routes!(fits_tangential))
+        .routes(routes!(fits_torsional))
+}
 
 /// One measured impact: geometry, and velocities before and after.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
@@ -86,7 +95,7 @@ pub struct TangentialFitResponse {
     path = "/v1/fits/tangential",
     tag = "fits",
     request_body(content = TangentialFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted coefficients", body = TangentialFitResponse), ImpactProblems)
+    responses((status = 200, description = "The fitted coefficients", body = TangentialFitResponse), Problems)
 )]
 pub async fn fits_tangential(
     ApiJson(req): ApiJson<TangentialFitRequest>,
@@ -204,7 +213,7 @@ fn unfittable(error: FitError) -> ApiError {
     path = "/v1/fits/torsional",
     tag = "fits",
     request_body(content = TorsionalFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted coefficients", body = TorsionalFitResponse), ImpactProblems)
+    responses((status = 200, description = "The fitted coefficients", body = TorsionalFitResponse), Problems)
 )]
 pub async fn fits_torsional(
     ApiJson(req): ApiJson<TorsionalFitRequest>,

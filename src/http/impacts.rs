@@ -1,71 +1,31 @@
 //! `POST /v1/impacts/{normal,oblique,tangential,torsional}`: one impact each.
-//! Handlers only map the wire types to solver inputs and back.
+//! Each request type parses into the solver's impact with `TryFrom` (a
+//! structural error names its member); handlers only solve and map back.
 
 use axum::Json;
 use axum::http::StatusCode;
 use serde::Deserialize;
-use utoipa::{IntoResponses, ToSchema};
+use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
 
 use super::dto::{
     ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, TorsionalResponse, VelocityDto,
 };
 use super::extract::ApiJson;
-use super::problem::{ApiError, Problem};
+use super::problem::{ApiError, Problems};
 use crate::error::{ImpactError, Input};
-use crate::exact::Precision;
-use crate::oblique::KineticRestitution;
-use crate::planar::Outputs;
-use crate::sweep::planar::{PlanarLaw, PlanarPoint, solve_point};
-use crate::sweep::torsional::solve_torsional;
-use crate::torsional::TorsionalImpact;
+use crate::impact::{Law, PlanarBody, PlanarImpact, Precision, TorsionalImpact, solve};
+use crate::outcome::Outputs;
+use crate::scene::PlanarVelocity;
 
-/// The error responses every impact endpoint may give (all problem+json).
-#[derive(IntoResponses)]
-#[allow(dead_code)]
-pub enum ImpactProblems {
-    /// The body is not valid JSON.
-    #[response(
-        status = 400,
-        description = "Malformed JSON",
-        content_type = "application/problem+json"
-    )]
-    Malformed(Problem),
-    /// The service has an API key and the request lacks it or has another.
-    #[response(
-        status = 401,
-        description = "Missing or wrong bearer token (only when the service runs with an API key)",
-        content_type = "application/problem+json"
-    )]
-    Unauthorized(Problem),
-    /// The body is larger than the configured limit.
-    #[response(
-        status = 413,
-        description = "Request body too large",
-        content_type = "application/problem+json"
-    )]
-    TooLarge(Problem),
-    /// The body is not sent as JSON.
-    #[response(
-        status = 415,
-        description = "Content-Type is not application/json",
-        content_type = "application/problem+json"
-    )]
-    UnsupportedMediaType(Problem),
-    /// The body does not match the schema, or the inputs have no physical answer
-    /// (a contact that is not approaching, D ≤ 0, energy creation); `pointer` names the member.
-    #[response(
-        status = 422,
-        description = "Schema mismatch, or inputs without a physical impact answer; `pointer` names the offending member",
-        content_type = "application/problem+json"
-    )]
-    Unprocessable(Problem),
-    /// The server is at its concurrency limit; retry after the given seconds.
-    #[response(
-        status = 503,
-        description = "Overloaded: retry after `Retry-After` seconds",
-        content_type = "application/problem+json"
-    )]
-    Overloaded(Problem),
+/// The impact endpoints, with their OpenAPI operations.
+pub fn router() -> OpenApiRouter {
+    OpenApiRouter::new()
+        .routes(routes!(impacts_normal))
+        .routes(routes!(impacts_oblique))
+        .routes(routes!(impacts_tangential))
+        .routes(routes!(impacts_torsional))
 }
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.
@@ -235,27 +195,33 @@ pub struct TorsionalRequest {
     pub precision: PrecisionDto,
 }
 
-/// The law and inputs of a normal request.
-pub fn normal_input(req: &NormalRequest) -> Result<(PlanarLaw, PlanarPoint), ApiError> {
-    let law = match req.body.inertia {
-        Some(_) => PlanarLaw::Frictionless,
-        None if req.contact.is_some() => {
-            return Err(ImpactError::NeedsInertia {
-                input: Input::TangentialOffset,
+impl TryFrom<&NormalRequest> for PlanarImpact {
+    type Error = ApiError;
+
+    /// A point mass when the body has no inertia (then no contact may be given).
+    fn try_from(req: &NormalRequest) -> Result<Self, ApiError> {
+        let body = match (req.body.inertia, req.contact) {
+            (Some(inertia), contact) => PlanarBody::Rigid {
+                mass: req.body.mass,
+                inertia,
+                contact: contact.map(Into::into).unwrap_or_default(),
+            },
+            (None, Some(_)) => {
+                return Err(ImpactError::NeedsInertia {
+                    input: Input::TangentialOffset,
+                }
+                .into());
             }
-            .into());
-        }
-        None => PlanarLaw::PointMass,
-    };
-    let point = PlanarPoint {
-        mass: req.body.mass,
-        inertia: req.body.inertia.unwrap_or(0.0),
-        contact: req.contact.map(Into::into).unwrap_or_default(),
-        velocity: req.velocity.into(),
-        restitution: req.restitution,
-        ..PlanarPoint::default()
-    };
-    Ok((law, point))
+            (None, None) => PlanarBody::PointMass { mass: req.body.mass },
+        };
+        Ok(PlanarImpact {
+            body,
+            velocity: req.velocity.into(),
+            law: Law::Frictionless {
+                restitution: req.restitution,
+            },
+        })
+    }
 }
 
 fn unprocessable(pointer: &str, detail: &str) -> ApiError {
@@ -268,119 +234,124 @@ fn unprocessable(pointer: &str, detail: &str) -> ApiError {
     .at(pointer)
 }
 
-/// The law and inputs of an oblique request, checking that exactly one law is given.
-pub fn oblique_input(req: &ObliqueRequest) -> Result<(PlanarLaw, PlanarPoint), ApiError> {
-    let mut point = PlanarPoint {
-        mass: req.body.mass,
-        inertia: req.body.inertia,
-        contact: req.contact.into(),
-        velocity: req.velocity.into(),
-        ..PlanarPoint::default()
-    };
-    if let Some(k) = req.kinetic_restitution {
-        if req.restitution.is_some() || req.friction.is_some() || req.impulse_ratio.is_some() {
-            return Err(unprocessable(
-                "/kinetic_restitution",
-                "kinetic_restitution replaces restitution, friction and impulse_ratio: give it alone",
-            ));
-        }
-        point.kinetic = KineticRestitution {
-            value: k.value,
-            approach_impulse_ratio: k.approach_impulse_ratio,
-            rebound_impulse_ratio: k.rebound_impulse_ratio,
+impl TryFrom<&ObliqueRequest> for PlanarImpact {
+    type Error = ApiError;
+
+    /// Exactly one law: `restitution` with `friction` or `impulse_ratio`, or
+    /// `kinetic_restitution` alone.
+    fn try_from(req: &ObliqueRequest) -> Result<Self, ApiError> {
+        let law = match (req.kinetic_restitution, req.restitution) {
+            (Some(_), _)
+                if req.restitution.is_some() || req.friction.is_some() || req.impulse_ratio.is_some() =>
+            {
+                return Err(unprocessable(
+                    "/kinetic_restitution",
+                    "kinetic_restitution replaces restitution, friction and impulse_ratio: give it alone",
+                ));
+            }
+            (Some(k), _) => Law::KineticRestitution {
+                value: k.value,
+                approach_impulse_ratio: k.approach_impulse_ratio,
+                rebound_impulse_ratio: k.rebound_impulse_ratio,
+            },
+            (None, None) => {
+                return Err(unprocessable(
+                    "/restitution",
+                    "give restitution with friction or impulse_ratio, or kinetic_restitution alone",
+                ));
+            }
+            (None, Some(restitution)) => match (req.friction, req.impulse_ratio) {
+                (Some(friction), None) => Law::Friction {
+                    restitution,
+                    friction,
+                },
+                (None, Some(impulse_ratio)) => Law::ImpulseRatio {
+                    restitution,
+                    impulse_ratio,
+                },
+                (Some(_), Some(_)) => {
+                    return Err(unprocessable(
+                        "/impulse_ratio",
+                        "give friction or impulse_ratio, not both",
+                    ));
+                }
+                (None, None) => {
+                    return Err(unprocessable(
+                        "/friction",
+                        "give a tangential law: friction or impulse_ratio",
+                    ));
+                }
+            },
         };
-        return Ok((PlanarLaw::KineticRestitution, point));
-    }
-    let Some(e) = req.restitution else {
-        return Err(unprocessable(
-            "/restitution",
-            "give restitution with friction or impulse_ratio, or kinetic_restitution alone",
-        ));
-    };
-    point.restitution = e;
-    let law = match (req.friction, req.impulse_ratio) {
-        (Some(f), None) => {
-            point.friction = f;
-            PlanarLaw::Friction
-        }
-        (None, Some(mu)) => {
-            point.impulse_ratio = mu;
-            PlanarLaw::ImpulseRatio
-        }
-        (Some(_), Some(_)) => {
-            return Err(unprocessable(
-                "/impulse_ratio",
-                "give friction or impulse_ratio, not both",
-            ));
-        }
-        (None, None) => {
-            return Err(unprocessable(
-                "/friction",
-                "give a tangential law: friction or impulse_ratio",
-            ));
-        }
-    };
-    Ok((law, point))
-}
-
-/// The law and inputs of a tangential-restitution request.
-pub fn tangential_input(req: &TangentialRequest) -> (PlanarLaw, PlanarPoint) {
-    let point = PlanarPoint {
-        mass: req.body.mass,
-        inertia: req.body.inertia,
-        contact: req.contact.into(),
-        velocity: req.velocity.into(),
-        restitution: req.restitution,
-        friction: req.friction,
-        tangential_restitution: req.tangential_restitution,
-        ..PlanarPoint::default()
-    };
-    (PlanarLaw::TangentialRestitution, point)
-}
-
-/// The inputs of a torsional request.
-pub fn torsional_input(req: &TorsionalRequest) -> TorsionalImpact {
-    TorsionalImpact {
-        mass: req.body.mass,
-        normal_inertia: req.body.normal_inertia,
-        normal_velocity: req.velocity.normal,
-        spin: req.velocity.spin,
-        restitution: req.restitution,
-        torsional_restitution: req.torsion.restitution,
-        torsional_friction: req.torsion.friction,
-        pitch_radius: req.torsion.pitch_radius,
+        Ok(rigid(req.body, req.contact, req.velocity, law))
     }
 }
 
-fn solve_planar(
-    input: Result<(PlanarLaw, PlanarPoint), ApiError>,
-    precision: PrecisionDto,
-) -> Result<PlanarResponse, ApiError> {
-    let (law, point) = input?;
+impl From<&TangentialRequest> for PlanarImpact {
+    fn from(req: &TangentialRequest) -> Self {
+        rigid(
+            req.body,
+            req.contact,
+            req.velocity,
+            Law::TangentialRestitution {
+                restitution: req.restitution,
+                friction: req.friction,
+                tangential_restitution: req.tangential_restitution,
+            },
+        )
+    }
+}
+
+fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: Law) -> PlanarImpact {
+    PlanarImpact::rigid(
+        body.mass,
+        body.inertia,
+        contact.into(),
+        PlanarVelocity::from(velocity),
+        law,
+    )
+}
+
+impl From<&TorsionalRequest> for TorsionalImpact {
+    fn from(req: &TorsionalRequest) -> Self {
+        TorsionalImpact {
+            mass: req.body.mass,
+            normal_inertia: req.body.normal_inertia,
+            normal_velocity: req.velocity.normal,
+            spin: req.velocity.spin,
+            restitution: req.restitution,
+            torsional_restitution: req.torsion.restitution,
+            torsional_friction: req.torsion.friction,
+            pitch_radius: req.torsion.pitch_radius,
+        }
+    }
+}
+
+fn respond_planar(impact: PlanarImpact, precision: PrecisionDto) -> Result<PlanarResponse, ApiError> {
     let precision = Precision::from(precision);
-    let outcome = solve_point(law, &point, Outputs::ALL, precision)?;
+    let outcome = solve(&impact, Outputs::ALL, precision)?;
     Ok(PlanarResponse::from_outcome(&outcome, precision))
 }
 
 /// The response to a normal request.
 pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(normal_input(&req), req.precision)
+    respond_planar(PlanarImpact::try_from(&req)?, req.precision)
 }
 
 /// The response to an oblique request.
 pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(oblique_input(&req), req.precision)
+    respond_planar(PlanarImpact::try_from(&req)?, req.precision)
 }
 
 /// The response to a tangential-restitution request.
 pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
-    solve_planar(Ok(tangential_input(&req)), req.precision)
+    respond_planar(PlanarImpact::from(&req), req.precision)
 }
 
 /// The response to a torsional request.
 pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, ApiError> {
     let precision = Precision::from(req.precision);
-    let outcome = solve_torsional(&torsional_input(&req), true, precision)?;
+    let outcome = solve(&TorsionalImpact::from(&req), Outputs::ALL, precision)?;
     Ok(TorsionalResponse::from_outcome(&outcome, precision))
 }
 
@@ -390,7 +361,7 @@ pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, Api
     path = "/v1/impacts/normal",
     tag = "impacts",
     request_body(content = NormalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), ImpactProblems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
 )]
 pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json<PlanarResponse>, ApiError> {
     Ok(Json(respond_normal(req)?))
@@ -402,7 +373,7 @@ pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json
     path = "/v1/impacts/oblique",
     tag = "impacts",
     request_body(content = ObliqueRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), ImpactProblems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
 )]
 pub async fn impacts_oblique(
     ApiJson(req): ApiJson<ObliqueRequest>,
@@ -416,7 +387,7 @@ pub async fn impacts_oblique(
     path = "/v1/impacts/tangential",
     tag = "impacts",
     request_body(content = TangentialRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), ImpactProblems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
 )]
 pub async fn impacts_tangential(
     ApiJson(req): ApiJson<TangentialRequest>,
@@ -430,10 +401,113 @@ pub async fn impacts_tangential(
     path = "/v1/impacts/torsional",
     tag = "impacts",
     request_body(content = TorsionalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), ImpactProblems)
+    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), Problems)
 )]
 pub async fn impacts_torsional(
     ApiJson(req): ApiJson<TorsionalRequest>,
 ) -> Result<Json<TorsionalResponse>, ApiError> {
     Ok(Json(respond_torsional(req)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::{Value as Json, json};
+
+    use super::*;
+    use crate::impact::Case;
+    use crate::quantity::Value;
+
+    /// Every input a request's impact reads sits at its path in the request,
+    /// with the value the impact reads.
+    fn inputs_resolve<C: Case>(request: &Json, impact: &C) {
+        let reads = impact.reads();
+        assert!(!reads.is_empty());
+        for input in reads {
+            let at = request
+                .pointer(input.path())
+                .unwrap_or_else(|| panic!("{} in {request}", input.path()));
+            assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
+        }
+    }
+
+    /// Every output of the case sits at its path in the serialised response,
+    /// with the value the case reads off the outcome.
+    fn outputs_resolve<C: Case>(response: &Json, outcome: &C::Outcome) {
+        for &output in C::OUTPUTS {
+            let at = response
+                .pointer(output.path())
+                .unwrap_or_else(|| panic!("{} in {response}", output.path()));
+            match C::output(outcome, output) {
+                Value::Number(x) => assert_eq!(at.as_f64(), Some(x), "{}", output.path()),
+                Value::Text(name) => assert_eq!(at.as_str(), Some(name), "{}", output.path()),
+            }
+        }
+    }
+
+    fn body() -> Json {
+        json!({"mass": 1.25, "inertia": 0.0021})
+    }
+
+    fn contact() -> Json {
+        json!({"tangential_offset": 0.011, "normal_offset": 0.053})
+    }
+
+    fn velocity() -> Json {
+        json!({"normal": -1.1, "tangential": 0.37, "angular": 2.9})
+    }
+
+    #[test]
+    fn every_input_and_output_path_resolves_in_the_planar_wire_types() {
+        let requests = [
+            json!({"body": body(), "contact": contact(), "velocity": velocity(), "restitution": 0.93}),
+            json!({"body": {"mass": 1.25}, "velocity": {"normal": -1.1, "tangential": 0.37}, "restitution": 0.93}),
+        ];
+        let mut impacts: Vec<(Json, PlanarImpact)> = requests
+            .into_iter()
+            .map(|r| {
+                let req: NormalRequest = serde_json::from_value(r.clone()).unwrap();
+                (r, PlanarImpact::try_from(&req).unwrap())
+            })
+            .collect();
+        for law in [
+            json!({"restitution": 0.93, "friction": 0.123}),
+            json!({"restitution": 0.93, "impulse_ratio": -0.05}),
+            json!({"kinetic_restitution": {"value": 0.9, "approach_impulse_ratio": -0.05, "rebound_impulse_ratio": -0.04}}),
+        ] {
+            let mut r = json!({"body": body(), "contact": contact(), "velocity": velocity()});
+            r.as_object_mut()
+                .unwrap()
+                .extend(law.as_object().unwrap().clone());
+            let req: ObliqueRequest = serde_json::from_value(r.clone()).unwrap();
+            impacts.push((r, PlanarImpact::try_from(&req).unwrap()));
+        }
+        let r = json!({"body": body(), "contact": contact(), "velocity": velocity(),
+                       "restitution": 0.93, "friction": 0.123, "tangential_restitution": 0.34});
+        let req: TangentialRequest = serde_json::from_value(r.clone()).unwrap();
+        impacts.push((r, PlanarImpact::from(&req)));
+        for (request, impact) in &impacts {
+            inputs_resolve(request, impact);
+            for precision in [Precision::Fast, Precision::Exact] {
+                let outcome = solve(impact, Outputs::ALL, precision).unwrap();
+                let response =
+                    serde_json::to_value(PlanarResponse::from_outcome(&outcome, precision)).unwrap();
+                outputs_resolve::<PlanarImpact>(&response, &outcome);
+            }
+        }
+    }
+
+    #[test]
+    fn every_input_and_output_path_resolves_in_the_torsional_wire_types() {
+        let request = json!({"body": {"mass": 0.6, "normal_inertia": 0.003456},
+                             "velocity": {"normal": -3.0, "spin": 20.0}, "restitution": 0.7,
+                             "torsion": {"restitution": 0.2, "friction": 0.3, "pitch_radius": 0.01}});
+        let req: TorsionalRequest = serde_json::from_value(request.clone()).unwrap();
+        let impact = TorsionalImpact::from(&req);
+        inputs_resolve(&request, &impact);
+        assert_eq!(impact.reads(), TorsionalImpact::INPUTS);
+        let outcome = solve(&impact, Outputs::ALL, Precision::Fast).unwrap();
+        let response =
+            serde_json::to_value(TorsionalResponse::from_outcome(&outcome, Precision::Fast)).unwrap();
+        outputs_resolve::<TorsionalImpact>(&response, &outcome);
+    }
 }

@@ -11,7 +11,6 @@ pub mod extract;
 pub mod fits;
 pub mod impacts;
 pub mod problem;
-pub mod svg;
 pub mod sweeps;
 
 use std::sync::Arc;
@@ -98,13 +97,9 @@ async fn healthz() -> Json<Health> {
 
 fn routes() -> OpenApiRouter {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
-        .routes(routes!(impacts::impacts_normal))
-        .routes(routes!(impacts::impacts_oblique))
-        .routes(routes!(impacts::impacts_tangential))
-        .routes(routes!(impacts::impacts_torsional))
-        .routes(routes!(sweeps::sweeps))
-        .routes(routes!(fits::fits_tangential))
-        .routes(routes!(fits::fits_torsional))
+        .merge(impacts::router())
+        .merge(sweeps::router())
+        .merge(fits::router())
         .routes(routes!(healthz))
 }
 
@@ -125,11 +120,24 @@ pub fn openapi_json() -> String {
 
 /// The application: routes, documentation and middleware, ready to serve.
 pub fn app(config: &ServiceConfig) -> Router {
+    app_with(config, AppState::default())
+}
+
+/// What one application shares across requests, for its handlers and for
+/// whoever serves it.
+#[derive(Debug, Clone, Default)]
+pub struct AppState {
+    /// Streamed sweeps still computing.
+    pub streams: sweeps::Streams,
+}
+
+/// The application with the given state (tests keep a handle on it).
+pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let (router, _) = routes().split_for_parts();
-    with_middleware(
-        router.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi())),
-        config,
-    )
+    let router = router
+        .layer(axum::Extension(state.streams))
+        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi()));
+    with_middleware(router, config)
 }
 
 /// Wraps `router` in the service's middleware and fallbacks (request ids,

@@ -4,9 +4,9 @@
 use axum::http::{HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use serde::Serialize;
-use utoipa::ToSchema;
+use utoipa::{IntoResponses, ToSchema};
 
-use crate::error::{ImpactError, Input, Output};
+use crate::error::ImpactError;
 
 /// The media type of every error body.
 pub const PROBLEM_JSON: &str = "application/problem+json";
@@ -75,6 +75,15 @@ impl ApiError {
         self
     }
 
+    /// The same problem for a member nested under `prefix` (a JSON pointer):
+    /// `/base` turns `/restitution` into `/base/restitution`.
+    pub fn under(mut self, prefix: &str) -> Self {
+        if let Some(pointer) = self.problem.pointer.take() {
+            self.problem.pointer = Some(format!("{prefix}{pointer}"));
+        }
+        self
+    }
+
     /// Adds a `Retry-After` header (seconds).
     pub fn retry_after(mut self, seconds: u32) -> Self {
         self.retry_after = Some(seconds);
@@ -100,9 +109,9 @@ impl ApiError {
             error.to_string(),
         );
         if let Some(input) = error.input() {
-            api = api.at(input_pointer(input));
+            api = api.at(input.path());
         } else if let Some(output) = error.output() {
-            api = api.at(output_pointer(output));
+            api = api.at(output.path());
         }
         if let ImpactError::CreatesEnergy { admissible, .. } = error {
             api.problem.admissible_impulse_ratio = Some(IntervalDto {
@@ -133,53 +142,54 @@ impl IntoResponse for ApiError {
     }
 }
 
-/// JSON pointer of an input in the request bodies (the same in every case).
-pub fn input_pointer(input: Input) -> &'static str {
-    match input {
-        Input::Mass => "/body/mass",
-        Input::Inertia => "/body/inertia",
-        Input::NormalInertia => "/body/normal_inertia",
-        Input::TangentialOffset => "/contact/tangential_offset",
-        Input::NormalOffset => "/contact/normal_offset",
-        Input::NormalVelocity => "/velocity/normal",
-        Input::TangentialVelocity => "/velocity/tangential",
-        Input::AngularVelocity => "/velocity/angular",
-        Input::Spin => "/velocity/spin",
-        Input::Restitution => "/restitution",
-        Input::Friction => "/friction",
-        Input::ImpulseRatio => "/impulse_ratio",
-        Input::TangentialRestitution => "/tangential_restitution",
-        Input::KineticRestitution => "/kinetic_restitution/value",
-        Input::ApproachImpulseRatio => "/kinetic_restitution/approach_impulse_ratio",
-        Input::ReboundImpulseRatio => "/kinetic_restitution/rebound_impulse_ratio",
-        Input::TorsionalRestitution => "/torsion/restitution",
-        Input::TorsionalFriction => "/torsion/friction",
-        Input::PitchRadius => "/torsion/pitch_radius",
-    }
-}
-
-/// JSON pointer of an output in the response bodies.
-pub fn output_pointer(output: Output) -> &'static str {
-    match output {
-        Output::FinalNormalVelocity => "/final_velocity/normal",
-        Output::FinalTangentialVelocity => "/final_velocity/tangential",
-        Output::FinalAngularVelocity => "/final_velocity/angular",
-        Output::InitialNormalContactVelocity => "/contact_velocity/initial/normal",
-        Output::InitialTangentialContactVelocity => "/contact_velocity/initial/tangential",
-        Output::FinalNormalContactVelocity => "/contact_velocity/final/normal",
-        Output::FinalTangentialContactVelocity => "/contact_velocity/final/tangential",
-        Output::NormalImpulse => "/impulse/normal",
-        Output::TangentialImpulse => "/impulse/tangential",
-        Output::ImpulseRatio => "/impulse_ratio",
-        Output::CriticalImpulseRatio => "/critical_impulse_ratio",
-        Output::Restitution => "/restitution",
-        Output::InitialEnergy => "/energy/initial",
-        Output::FinalEnergy => "/energy/final",
-        Output::EnergyLoss => "/energy/loss",
-        Output::MaxEnergyLoss => "/energy/max_loss",
-        Output::NormalizedEnergyLoss => "/energy/normalized_loss",
-        Output::FinalSpin => "/final_velocity/spin",
-        Output::TorsionalImpulse => "/impulse/torsional",
-        Output::SwitchSpin => "/switch_spin",
-    }
+/// The error responses every operation that takes a JSON body may give (all
+/// problem+json); an operation lists its own others (406 for sweeps) beside it.
+#[derive(IntoResponses)]
+#[allow(dead_code)]
+pub enum Problems {
+    /// The body is not valid JSON.
+    #[response(
+        status = 400,
+        description = "Malformed JSON",
+        content_type = "application/problem+json"
+    )]
+    Malformed(Problem),
+    /// The service has an API key and the request lacks it or has another.
+    #[response(
+        status = 401,
+        description = "Missing or wrong bearer token (only when the service runs with an API key)",
+        content_type = "application/problem+json"
+    )]
+    Unauthorized(Problem),
+    /// The body is larger than the configured limit.
+    #[response(
+        status = 413,
+        description = "Request body too large",
+        content_type = "application/problem+json"
+    )]
+    TooLarge(Problem),
+    /// The body is not sent as JSON.
+    #[response(
+        status = 415,
+        description = "Content-Type is not application/json",
+        content_type = "application/problem+json"
+    )]
+    UnsupportedMediaType(Problem),
+    /// The body does not match the schema, or the inputs have no physical answer
+    /// (a contact that is not approaching, D ≤ 0, energy creation); `pointer` names the member.
+    #[response(
+        status = 422,
+        description = "Schema mismatch, or inputs that are not acceptable: an impact without a physical answer \
+                       (not approaching, D ≤ 0, energy creation), a sweep's base, axis, output or point count; \
+                       `pointer` names the offending member",
+        content_type = "application/problem+json"
+    )]
+    Unprocessable(Problem),
+    /// The server is at its concurrency limit; retry after the given seconds.
+    #[response(
+        status = 503,
+        description = "Overloaded: retry after `Retry-After` seconds",
+        content_type = "application/problem+json"
+    )]
+    Overloaded(Problem),
 }

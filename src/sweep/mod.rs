@@ -2,16 +2,14 @@
 //! chunk by chunk, in parallel across cores.
 //!
 //! A [`SweepCase`] knows its inputs (a `Point`), which input an axis sets (a
-//! `Param`), and how to evaluate a point into the chosen output columns. It is
-//! built once per sweep, after the axes are known, so it can validate and
-//! prepare every input no axis touches (the planar scene, for instance) and
-//! skip every output no column asks for. The engine walks the grid with an
-//! odometer, resets only the inputs whose axis moved, and reuses its buffers:
-//! no allocation per point.
+//! `Param`), and how to evaluate a point into the chosen output columns.
+//! [`CaseSweep`] is the one for every impact case: built once per sweep, after
+//! the axes are known, it validates and prepares every input no axis touches
+//! (through [`Solver`]) and skips every output no column asks for. The engine
+//! walks the grid with an odometer, resets only the inputs whose axis moved,
+//! and reuses its buffers: no allocation per point.
 
 mod grid;
-pub mod planar;
-pub mod torsional;
 
 use std::ops::Range;
 
@@ -20,16 +18,12 @@ use rayon::prelude::*;
 use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points};
 
-use crate::error::ImpactError;
+use crate::error::{ImpactError, Input, Output};
+use crate::impact::{Case, Precision, Solver};
+use crate::outcome::Outputs;
 
-/// One output value of a point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Cell {
-    /// A number.
-    Number(f64),
-    /// A name (a regime).
-    Text(&'static str),
-}
+/// One output value of a point: a number or a name (a regime).
+pub type Cell = crate::quantity::Value;
 
 /// A physical case a sweep can run.
 pub trait SweepCase: Sync {
@@ -179,6 +173,70 @@ impl<C: SweepCase> Sweep<C> {
     }
 }
 
+/// An impact case over a grid: the base impact's [`Solver`] and the chosen
+/// output columns.
+#[derive(Debug, Clone)]
+pub struct CaseSweep<C: Case> {
+    solver: Solver<C>,
+    columns: Vec<Output>,
+}
+
+impl<C: Case> CaseSweep<C> {
+    /// Prepares `base` for a sweep in which axes set `swept`, computing only
+    /// what `columns` need. Refuses (returning it) the first swept input the
+    /// base impact does not read.
+    pub fn new(base: &C, swept: &[Input], columns: Vec<Output>, precision: Precision) -> Result<Self, Input> {
+        if let Some(&unread) = swept.iter().find(|&&i| base.input(i).is_none()) {
+            return Err(unread);
+        }
+        Ok(CaseSweep {
+            solver: Solver::new(base, swept, Outputs::needed_by(&columns), precision),
+            columns,
+        })
+    }
+
+    /// The optional outputs the columns need.
+    pub fn outputs(&self) -> Outputs {
+        self.solver.outputs()
+    }
+
+    /// The columns.
+    pub fn columns(&self) -> &[Output] {
+        &self.columns
+    }
+
+    /// Solves one point with every output the columns need.
+    pub fn solve(&self, point: &C) -> Result<C::Outcome, ImpactError> {
+        self.solver.solve(point)
+    }
+}
+
+impl<C: Case> SweepCase for CaseSweep<C> {
+    type Point = C;
+    type Param = Input;
+
+    /// Sets an input the point reads ([`CaseSweep::new`] refuses axes of any other).
+    #[inline]
+    fn set(point: &mut C, input: Input, value: f64) {
+        if let Some(slot) = point.input_mut(input) {
+            *slot = value;
+        }
+    }
+
+    fn columns(&self) -> usize {
+        self.columns.len()
+    }
+
+    #[inline]
+    fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
+        let outcome = self.solver.solve(point)?;
+        for (cell, &column) in cells.iter_mut().zip(&self.columns) {
+            *cell = C::output(&outcome, column);
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -280,5 +338,130 @@ mod tests {
             }
         ));
         assert_eq!(calls, 2);
+    }
+
+    use crate::impact::{Law, PlanarImpact, TorsionalImpact, solve};
+    use crate::scene::{Contact, PlanarVelocity};
+
+    fn maw(friction: f64) -> PlanarImpact {
+        PlanarImpact::rigid(
+            1.0,
+            0.5 * 0.05 * 0.05,
+            Contact {
+                tangential_offset: 0.0,
+                normal_offset: 0.05,
+            },
+            PlanarVelocity {
+                normal: -1.0,
+                tangential: 2.0,
+                angular: 0.0,
+            },
+            Law::TangentialRestitution {
+                restitution: 0.93,
+                friction,
+                tangential_restitution: 0.34,
+            },
+        )
+    }
+
+    #[test]
+    fn a_fixed_scene_gives_the_same_answers_as_one_built_per_point() {
+        let columns = vec![Output::FinalTangentialContactVelocity, Output::EnergyLoss];
+        let fixed =
+            CaseSweep::new(&maw(0.123), &[Input::Friction], columns.clone(), Precision::Fast).unwrap();
+        let per_point = CaseSweep::new(
+            &maw(0.123),
+            &[Input::TangentialVelocity],
+            columns,
+            Precision::Fast,
+        )
+        .unwrap();
+        assert!(fixed.outputs().energy && !fixed.outputs().critical_impulse_ratio);
+        for f in [0.0, 0.05, 0.123, 0.5] {
+            let p = maw(f);
+            assert_eq!(fixed.solve(&p), per_point.solve(&p));
+            assert_eq!(
+                fixed.solve(&p).unwrap(),
+                solve(&p, fixed.outputs(), Precision::Fast).unwrap()
+            );
+        }
+    }
+
+    #[test]
+    fn an_axis_the_law_does_not_read_is_refused() {
+        let refused = CaseSweep::new(
+            &maw(0.1),
+            &[Input::ImpulseRatio],
+            vec![Output::Regime],
+            Precision::Fast,
+        );
+        assert_eq!(refused.err(), Some(Input::ImpulseRatio));
+    }
+
+    #[test]
+    fn invalid_points_fail_alone() {
+        let base = maw(0.123);
+        let case = CaseSweep::new(
+            &base,
+            &[Input::NormalVelocity],
+            vec![Output::Regime],
+            Precision::Fast,
+        )
+        .unwrap();
+        let axes = vec![Axis {
+            param: Input::NormalVelocity,
+            values: AxisValues::List(vec![-1.0, 0.5, -2.0]),
+        }];
+        let sweep = Sweep::new(case, base, axes, Combine::Product, 10).unwrap();
+        let mut outcomes = Vec::new();
+        sweep.for_each_in(0..3, |row| {
+            outcomes.push(row.outcome.map(|c| c.to_vec()).map_err(|e| e.title()))
+        });
+        assert_eq!(outcomes[0], Ok(vec![Cell::Text("sliding")]));
+        assert_eq!(outcomes[1], Err("Contact is not approaching"));
+        assert_eq!(outcomes[2], Ok(vec![Cell::Text("sliding")]));
+    }
+
+    /// Out-of-range torsional inputs, fixed or swept, are answered as single solves answer them.
+    #[test]
+    fn extreme_fixed_and_swept_inputs_escalate_as_single_solves_do() {
+        let base = TorsionalImpact {
+            mass: 0.6,
+            normal_inertia: 0.003456,
+            normal_velocity: -3.0,
+            spin: 0.0,
+            restitution: 0.7,
+            torsional_restitution: 0.2,
+            torsional_friction: 0.3,
+            pitch_radius: 0.01,
+        };
+        let spins = vec![20.0, 1e250, -3e-250, 0.0];
+        for b in [base, TorsionalImpact { mass: 1e-250, ..base }] {
+            let case = CaseSweep::new(&b, &[Input::Spin], vec![Output::FinalSpin], Precision::Fast).unwrap();
+            let axes = vec![Axis {
+                param: Input::Spin,
+                values: AxisValues::List(spins.clone()),
+            }];
+            let sweep = Sweep::new(case, b, axes, Combine::Product, u64::MAX).expect("a sweep");
+            let mut got = Vec::new();
+            sweep.for_each_in(0..sweep.points(), |row| match row.outcome {
+                Ok([Cell::Number(x)]) => got.push(*x),
+                other => panic!("{other:?}"),
+            });
+            for (spin, got) in spins.iter().zip(got) {
+                let one = solve(
+                    &TorsionalImpact { spin: *spin, ..b },
+                    Outputs::MINIMAL,
+                    Precision::Fast,
+                )
+                .expect("an answer");
+                assert_eq!(
+                    got.to_bits(),
+                    one.final_spin.to_bits(),
+                    "spin {spin}, mass {}",
+                    b.mass
+                );
+            }
+        }
     }
 }

@@ -2,6 +2,8 @@
 #![allow(dead_code)]
 
 pub mod accuracy;
+pub mod linear;
+pub mod plain;
 pub mod reference;
 pub mod server;
 pub mod validation;

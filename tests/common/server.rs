@@ -1,13 +1,16 @@
 //! The real server on an ephemeral loopback port, called over HTTP with reqwest.
 
 use reqwest::StatusCode;
-use restitution::http::{ServiceConfig, serve_until};
+use restitution::http::sweeps::Streams;
+use restitution::http::{AppState, ServiceConfig, app_with, serve_router_until};
 use serde_json::Value;
 
 pub struct TestApp {
     pub addr: std::net::SocketAddr,
     pub base: String,
     pub client: reqwest::Client,
+    /// The application's streamed sweeps still computing.
+    pub streams: Streams,
 }
 
 /// Starts the application on an ephemeral loopback port.
@@ -16,11 +19,15 @@ pub async fn spawn_app(config: ServiceConfig) -> TestApp {
         .await
         .expect("bind loopback");
     let addr = listener.local_addr().expect("local addr");
-    tokio::spawn(async move { serve_until(listener, &config, std::future::pending()).await });
+    let state = AppState::default();
+    let streams = state.streams.clone();
+    let router = app_with(&config, state);
+    tokio::spawn(async move { serve_router_until(listener, router, &config, std::future::pending()).await });
     TestApp {
         addr,
         base: format!("http://{addr}"),
         client: reqwest::Client::new(),
+        streams,
     }
 }
 

@@ -12,9 +12,8 @@
 
 use std::collections::BTreeMap;
 
-use restitution::sweep::planar::{PlanarColumn, PlanarLaw, PlanarPoint, PlanarSweep};
-use restitution::sweep::{Axis, AxisValues, Cell, Combine, Sweep};
-use restitution::{Contact, Input, PlanarVelocity};
+use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
+use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision};
 
 /// Where the data files are.
 pub const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
@@ -412,15 +411,17 @@ impl Dataset {
     /// or the quantity is undefined (`V_t / v_t` at normal incidence).
     pub fn predict(&self, quantity: Quantity, et: f64, xs: &[f64]) -> Vec<Option<Predicted>> {
         let mass = 1.0;
-        let base = PlanarPoint {
+        let base = PlanarImpact::rigid(
             mass,
-            inertia: 0.4 * mass * self.radius * self.radius,
-            contact: Contact::central(self.radius),
-            restitution: self.restitution,
-            friction: self.friction,
-            tangential_restitution: et,
-            ..PlanarPoint::default()
-        };
+            0.4 * mass * self.radius * self.radius,
+            Contact::central(self.radius),
+            PlanarVelocity::default(),
+            Law::TangentialRestitution {
+                restitution: self.restitution,
+                friction: self.friction,
+                tangential_restitution: et,
+            },
+        );
         let inputs = [
             Input::NormalVelocity,
             Input::TangentialVelocity,
@@ -441,13 +442,14 @@ impl Dataset {
             })
             .collect();
         let columns = vec![
-            PlanarColumn::FinalNormalVelocity,
-            PlanarColumn::FinalTangentialVelocity,
-            PlanarColumn::FinalAngularVelocity,
-            PlanarColumn::FinalContactTangential,
-            PlanarColumn::Regime,
+            Output::FinalNormalVelocity,
+            Output::FinalTangentialVelocity,
+            Output::FinalAngularVelocity,
+            Output::FinalTangentialContactVelocity,
+            Output::Regime,
         ];
-        let case = PlanarSweep::new(PlanarLaw::TangentialRestitution, &base, &inputs, columns);
+        let case = CaseSweep::new(&base, &inputs, columns, Precision::Fast)
+            .expect("a rigid body reads its velocities");
         let mut out = vec![None; xs.len()];
         let Ok(sweep) = Sweep::new(case, base, axes, Combine::Zip, u64::MAX) else {
             return out;

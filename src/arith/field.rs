@@ -1,6 +1,6 @@
-//! The arithmetic the exact model is written in, implemented twice: by
-//! [`Bounded`] double-doubles (fast, may be undecided) and by exact
-//! [`Fraction`]s of big integers (slow, always decided).
+//! The arithmetic the model is written in, [`Field`], and its implementations
+//! for plain `f64` and for exact [`Fraction`]s of big integers (the
+//! compensated and double-double ones are in their own files).
 
 use std::cmp::Ordering;
 use std::convert::Infallible;
@@ -25,6 +25,13 @@ pub(crate) trait Field: Clone {
     fn add(&self, o: &Self) -> Self;
     fn sub(&self, o: &Self) -> Self;
     fn mul(&self, o: &Self) -> Self;
+    /// `self · b + c`: one rounding in `f64` (a fused multiply-add), the exact
+    /// value in the exact fields. The model uses it where a fused form keeps
+    /// the f64 evaluation's sign or accuracy.
+    #[inline(always)]
+    fn mul_add(&self, b: &Self, c: &Self) -> Self {
+        self.mul(b).add(c)
+    }
     /// Division; the model only divides by values whose sign it has decided non-zero.
     fn div(&self, o: &Self) -> Self;
     fn neg(&self) -> Self;
@@ -75,6 +82,70 @@ impl Field for Compensated {
     }
 }
 
+/// An `f64` evaluation that left the f64 range (an infinity or a NaN on the
+/// way): its signs and roundings are not trusted, and the caller answers in
+/// exact arithmetic instead.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct OutOfRange;
+
+impl Field for f64 {
+    type Undecided = OutOfRange;
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        self + o
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        self - o
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        self * o
+    }
+    #[inline(always)]
+    fn mul_add(&self, b: &Self, c: &Self) -> Self {
+        f64::mul_add(*self, *b, *c)
+    }
+    #[inline(always)]
+    fn div(&self, o: &Self) -> Self {
+        self / o
+    }
+    #[inline(always)]
+    fn neg(&self) -> Self {
+        -self
+    }
+    #[inline(always)]
+    fn sign(&self) -> Result<Ordering, OutOfRange> {
+        if self.is_finite() {
+            Ok(if *self > 0.0 {
+                Ordering::Greater
+            } else if *self < 0.0 {
+                Ordering::Less
+            } else {
+                Ordering::Equal
+            })
+        } else {
+            Err(OutOfRange)
+        }
+    }
+    /// The value itself, with a zero written `+0.0`.
+    #[inline(always)]
+    fn round(&self) -> Result<f64, OutOfRange> {
+        if self.is_finite() {
+            Ok(self + 0.0)
+        } else {
+            Err(OutOfRange)
+        }
+    }
+    fn approx(&self) -> f64 {
+        *self
+    }
+}
+
 /// A sign or rounding the double-double bound could not decide.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Undecided;
@@ -121,7 +192,7 @@ impl<const TRACK: bool> Field for Bounded<TRACK> {
 /// An exact rational `num / den` (`den > 0`), kept unreduced but for common
 /// factors of two: every input is dyadic, so dividing out powers of two keeps
 /// most values small, and no gcd is ever computed (normalising by gcd after
-/// every operation, as `BigRational` does, cost ten times more here).
+/// every operation, as `BigRational` does, is far dearer here).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Fraction {
     num: BigInt,

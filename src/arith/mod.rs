@@ -1,0 +1,26 @@
+//! The arithmetics the impact model ([`crate::model`]) is evaluated in, one
+//! [`Field`] each:
+//!
+//! - `f64` (`fast` precision): plain doubles, fused where a form asks for it;
+//!   undecided only when a value leaves the f64 range (the caller then
+//!   answers in exact arithmetic instead);
+//! - [`Compensated`] (`compensated.rs`): the plain f64 evaluation and its
+//!   rounding errors, gathered by error-free transformations, with a static
+//!   error bound (answers every typical input in `exact` precision);
+//! - [`Bounded`] (`bounded.rs`) double-doubles with a bound tracked operation by
+//!   operation, where the compensated stage failed for range reasons
+//!   (ill-conditioned quotients, exponents near the ends of the range);
+//! - `Bounded<true>`: the same keeping exact sums and products exact (exact
+//!   rounding ties and cancelled zeros formed without a quotient);
+//! - [`Fraction`]s of big integers, which always decide.
+//!
+//! Each is more decisive and dearer than the last; the order in which `exact`
+//! precision tries them is in [`crate::impact`].
+
+mod bounded;
+mod compensated;
+mod field;
+
+pub(crate) use bounded::Bounded;
+pub(crate) use compensated::{Compensated, Unsettled};
+pub(crate) use field::{Field, Fraction, OutOfRange, Undecided};

@@ -1,0 +1,176 @@
+//! `POST /v1/sweeps`: one case over a grid of inputs, as a JSON table,
+//! streamed NDJSON or CSV, or an SVG plot, chosen by `Accept`.
+//!
+//! The request is checked whole before anything is computed (`request.rs`):
+//! the base request of its case, every axis path and output pointer, the point
+//! count against its limit. Points are then computed in parallel chunks by
+//! [`crate::sweep`]: buffered into a table (`encode.rs`) or a plot
+//! (`plot.rs`), or streamed (`stream.rs`) in the format `Accept` chose
+//! (`negotiate.rs`).
+
+mod encode;
+mod negotiate;
+mod plot;
+mod request;
+mod stream;
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use axum::Extension;
+use axum::body::Body;
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use self::encode::{RowWriter, table};
+pub use self::negotiate::{Format, negotiate};
+pub use self::request::{AxisDto, CaseDto, CombineDto, RangeDto, SweepRequest, SweepTable};
+pub use self::stream::Streams;
+use self::stream::stream;
+use super::ServiceConfig;
+use super::extract::{ApiJson, parse_value};
+use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest};
+use super::problem::{ApiError, Problem, Problems};
+use crate::impact::{Case, PlanarImpact, Precision, TorsionalImpact};
+use crate::sweep::{CaseSweep, Sweep};
+
+/// The sweep endpoint, with its OpenAPI operation.
+pub fn router() -> OpenApiRouter {
+    OpenApiRouter::new().routes(routes!(sweeps))
+}
+
+/// Sweep one case over a grid of inputs.
+///
+/// Formats by `Accept`: `application/json` (default; a buffered table),
+/// `application/x-ndjson` and `text/csv` (streamed in point order with bounded
+/// memory), `image/svg+xml` (the first output against the first axis, one series
+/// per value of the other axes). A point without an answer carries the problem's
+/// title in its `error` column; only errors of the sweep's own structure fail it.
+#[utoipa::path(
+    post,
+    path = "/v1/sweeps",
+    tag = "sweeps",
+    request_body(content = SweepRequest, content_type = "application/json"),
+    responses(
+        (status = 200, description = "The sweep's points", headers(("x-sweep-points" = u64, description = "Number of points")),
+         content(
+            (SweepTable = "application/json"),
+            (String = "application/x-ndjson"),
+            (String = "text/csv"),
+            (String = "image/svg+xml"),
+        )),
+        (status = 406, description = "None of application/json, application/x-ndjson, text/csv, image/svg+xml is acceptable",
+         body = Problem, content_type = "application/problem+json"),
+        Problems
+    )
+)]
+pub async fn sweeps(
+    Extension(config): Extension<Arc<ServiceConfig>>,
+    Extension(streams): Extension<Streams>,
+    headers: HeaderMap,
+    ApiJson(request): ApiJson<SweepRequest>,
+) -> Result<Response, ApiError> {
+    let format = negotiate(&headers)?;
+    let limit = if format.is_buffered() {
+        config.max_buffered_sweep_points
+    } else {
+        config.max_sweep_points
+    };
+    let stall = Duration::from_millis(config.sweep_stall_timeout_ms);
+    let base = request.base.clone();
+    match request.case {
+        CaseDto::Normal => {
+            let base: NormalRequest = parse_value(base, "/base")?;
+            let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+        CaseDto::Oblique => {
+            let base: ObliqueRequest = parse_value(base, "/base")?;
+            let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+        CaseDto::Tangential => {
+            let base: TangentialRequest = parse_value(base, "/base")?;
+            let impact = PlanarImpact::from(&base);
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+        CaseDto::Torsional => {
+            let base: TorsionalRequest = parse_value(base, "/base")?;
+            let impact = TorsionalImpact::from(&base);
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+    }
+}
+
+/// Checks and answers the sweep of one case's base impact.
+async fn run<C: Case>(
+    request: &SweepRequest,
+    base: C,
+    base_precision: crate::http::dto::PrecisionDto,
+    limit: u64,
+    format: Format,
+    stall: Duration,
+    streams: &Streams,
+) -> Result<Response, ApiError> {
+    let precision = request::precision(request.precision, base_precision)?;
+    let sweep = request::sweep(request, base, precision, limit, format)?;
+    respond(sweep, format, precision, stall, streams).await
+}
+
+/// Produces the response: buffered (JSON, SVG) or streamed (CSV, NDJSON).
+async fn respond<C: Case>(
+    sweep: Sweep<CaseSweep<C>>,
+    format: Format,
+    precision: Precision,
+    stall: Duration,
+    streams: &Streams,
+) -> Result<Response, ApiError> {
+    let axis_names: Vec<&'static str> = sweep.axes().iter().map(|a| a.param.path()).collect();
+    let outputs: Vec<&'static str> = sweep.case().columns().iter().map(|o| o.path()).collect();
+    let mut names = axis_names.clone();
+    names.extend(&outputs);
+    let points = sweep.points();
+    let writer = RowWriter {
+        format,
+        precision,
+        names,
+    };
+    let body = match format {
+        Format::Svg => {
+            let plot = plot::Plot::check(&axis_names, &outputs, &sweep)?;
+            let sweep = Arc::new(sweep);
+            let text = tokio::task::spawn_blocking(move || plot.render(&sweep))
+                .await
+                .map_err(|_| internal())?;
+            Body::from(text)
+        }
+        Format::Json => {
+            let sweep = Arc::new(sweep);
+            let text = tokio::task::spawn_blocking(move || table(&sweep, &writer))
+                .await
+                .map_err(|_| internal())?;
+            Body::from(text)
+        }
+        Format::Csv | Format::Ndjson => stream(Arc::new(sweep), writer, stall, streams),
+    };
+    let mut response = (StatusCode::OK, body).into_response();
+    let headers = response.headers_mut();
+    headers.insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_static(format.content_type()),
+    );
+    headers.insert("x-sweep-points", HeaderValue::from(points));
+    headers.insert("x-precision", HeaderValue::from_static(precision.as_str()));
+    Ok(response)
+}
+
+fn internal() -> ApiError {
+    ApiError::new(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        "internal",
+        "Internal error",
+        "the sweep failed",
+    )
+}

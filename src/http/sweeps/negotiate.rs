@@ -1,0 +1,78 @@
+//! `Accept` negotiation: which format a sweep is answered in.
+
+use axum::http::{HeaderMap, StatusCode, header};
+
+use crate::http::problem::ApiError;
+
+/// A response format of the sweep endpoint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// `application/json`: one buffered table.
+    Json,
+    /// `application/x-ndjson`: one object per point, streamed.
+    Ndjson,
+    /// `text/csv`: a header row and one row per point, streamed.
+    Csv,
+    /// `image/svg+xml`: a buffered plot.
+    Svg,
+}
+
+impl Format {
+    pub(super) fn is_buffered(self) -> bool {
+        matches!(self, Format::Json | Format::Svg)
+    }
+
+    pub(super) fn content_type(self) -> &'static str {
+        match self {
+            Format::Json => "application/json",
+            Format::Ndjson => "application/x-ndjson",
+            Format::Csv => "text/csv; charset=utf-8; header=present",
+            Format::Svg => "image/svg+xml",
+        }
+    }
+}
+
+/// Picks the format from `Accept`: the acceptable range with the highest
+/// quality wins; `*/*`, `application/*` or no header mean JSON.
+pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
+    let mut ranges: Vec<(f32, Format)> = Vec::new();
+    let mut any = false;
+    for value in headers.get_all(header::ACCEPT) {
+        let Ok(text) = value.to_str() else { continue };
+        for entry in text.split(',') {
+            let mut parts = entry.split(';');
+            let range = parts.next().unwrap_or("").trim().to_ascii_lowercase();
+            if range.is_empty() {
+                continue;
+            }
+            any = true;
+            let quality = parts
+                .filter_map(|p| p.trim().strip_prefix("q="))
+                .find_map(|q| q.trim().parse::<f32>().ok())
+                .unwrap_or(1.0);
+            let format = match range.as_str() {
+                "application/json" | "application/*" | "*/*" => Format::Json,
+                "application/x-ndjson" | "application/jsonl" => Format::Ndjson,
+                "text/csv" | "text/*" => Format::Csv,
+                "image/svg+xml" | "image/*" => Format::Svg,
+                _ => continue,
+            };
+            if quality > 0.0 {
+                ranges.push((quality, format));
+            }
+        }
+    }
+    if !any {
+        return Ok(Format::Json);
+    }
+    // Stable: among equal qualities the first listed wins.
+    ranges.sort_by(|a, b| b.0.total_cmp(&a.0));
+    ranges.first().map(|&(_, f)| f).ok_or_else(|| {
+        ApiError::new(
+            StatusCode::NOT_ACCEPTABLE,
+            "not-acceptable",
+            "Not acceptable",
+            "a sweep is available as application/json, application/x-ndjson, text/csv or image/svg+xml",
+        )
+    })
+}

@@ -1,0 +1,291 @@
+//! The front door of the solver: an impact of one case with its law and that
+//! law's coefficients, and [`solve`], which validates it, checks the fast
+//! range, evaluates the model ([`crate::model`]) in the chosen precision and
+//! escalates to exact arithmetic where the fast one cannot answer.
+//!
+//! - `fast` precision evaluates the model in plain `f64`. Inputs outside
+//!   2^±200 ([`in_fast_range`]) and answers whose evaluation leaves the f64
+//!   range (an output that overflows, a sign that is NaN) are answered by the
+//!   exact evaluation instead, which neither overflows nor underflows in between.
+//! - `exact` precision: every numeric output is the correctly rounded f64 of
+//!   the model's exact value for the given f64 inputs, and every regime
+//!   decision and refusal is the exact one. Adaptive precision in the manner
+//!   of Shewchuk's robust predicates: the model is evaluated in up to four
+//!   arithmetics ([`crate::arith`]), each dearer and more decisive than the
+//!   last (compensated f64 with a static bound; double-double with a tracked
+//!   bound; the same keeping exact operations exact; exact fractions). When
+//!   every sign the model decides and every output it rounds is certified, the
+//!   answer of that arithmetic stands; otherwise the whole answer is evaluated
+//!   again in the next. An output whose exact value is zero is `+0.0`.
+//!
+//! A case ([`Case`]) also says, once, which inputs an impact reads and how to
+//! read each output from its outcome; sweeps and the HTTP layer derive their
+//! axes, columns and pointers from that.
+
+mod planar;
+mod torsional;
+
+use std::convert::Infallible;
+use std::fmt;
+
+pub use self::planar::{Law, PlanarBody, PlanarImpact};
+pub use self::torsional::TorsionalImpact;
+use crate::arith::{Bounded, Compensated, Field, Fraction, OutOfRange, Undecided, Unsettled};
+use crate::error::{ImpactError, Input, Output, Result};
+use crate::model::{Exact, Fail};
+use crate::outcome::Outputs;
+use crate::quantity::Value;
+
+/// Which arithmetic answers a request.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Precision {
+    /// The model in plain f64: fastest, error bounded relative to the terms
+    /// each output combines (`docs/accuracy.md`).
+    #[default]
+    Fast,
+    /// Correctly rounded outputs and exact decisions.
+    Exact,
+}
+
+impl Precision {
+    /// The mode's name as the API spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Precision::Fast => "fast",
+            Precision::Exact => "exact",
+        }
+    }
+}
+
+/// How an impact is evaluated: a [`Precision`], or one arithmetic alone (for
+/// comparisons, tests and benchmarks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Arithmetic {
+    /// `fast` precision: f64 inside the fast range, else exact.
+    Fast,
+    /// `exact` precision: the adaptive stages.
+    Exact,
+    /// The f64 evaluation whatever the inputs' range (no range check), exact
+    /// only where the f64 evaluation leaves the f64 range: what tests of the
+    /// f64 forms over wide magnitudes measure.
+    Plain,
+    /// Exact fractions alone (no earlier stage).
+    Rational,
+}
+
+impl From<Precision> for Arithmetic {
+    fn from(p: Precision) -> Self {
+        match p {
+            Precision::Fast => Arithmetic::Fast,
+            Precision::Exact => Arithmetic::Exact,
+        }
+    }
+}
+
+/// Which arithmetic produced an answer (or refusal).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Plain f64 (`fast` precision).
+    Fast,
+    /// Compensated f64 evaluation with a static error bound (also: inputs
+    /// refused before any arithmetic in `exact` precision).
+    Compensated,
+    /// Double-double with a certified error bound.
+    DoubleDouble,
+    /// Exact rationals, after the compensated and double-double stages could not decide.
+    Rational,
+}
+
+/// A physical case: an impact type whose values carry their law, with the
+/// lists of what it reads and answers.
+pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
+    /// The outcome of one impact.
+    type Outcome: Copy + fmt::Debug + Send;
+    /// What a sweep validates once when no axis changes it.
+    type Fixed: Clone + fmt::Debug + Send + Sync;
+    /// Every input any impact of this case may read, in request order.
+    const INPUTS: &'static [Input];
+    /// Every output of the case, in response order.
+    const OUTPUTS: &'static [Output];
+    /// The slot of an input this impact reads (its body and law), `None` for
+    /// one it does not.
+    fn input_mut(&mut self, input: Input) -> Option<&mut f64>;
+    /// The value of an input this impact reads.
+    fn input(&self, input: Input) -> Option<f64> {
+        let mut copy = *self;
+        copy.input_mut(input).map(|x| *x)
+    }
+    /// The inputs this impact reads, in request order.
+    fn reads(&self) -> Vec<Input> {
+        Self::INPUTS
+            .iter()
+            .copied()
+            .filter(|&i| self.input(i).is_some())
+            .collect()
+    }
+    /// What the impact is, in words (for messages).
+    fn describe(&self) -> &'static str;
+    /// One output's value in an outcome (a number is `NaN` when it was not computed).
+    fn output(outcome: &Self::Outcome, output: Output) -> Value;
+    /// Validates what no axis in `swept` changes, once for a sweep.
+    fn fix(&self, swept: &[Input]) -> Self::Fixed;
+    /// Validates and evaluates the impact in `arithmetic`, `fixed` being this
+    /// impact's own [`Case::fix`] result for the inputs not swept; `in_range`
+    /// tells `Fast` whether every input read is in the fast range.
+    fn evaluate(
+        &self,
+        fixed: &Self::Fixed,
+        outputs: Outputs,
+        arithmetic: Arithmetic,
+        in_range: bool,
+    ) -> (Result<Self::Outcome>, Stage);
+}
+
+/// Solves one impact in `precision`, computing the optional `outputs`.
+pub fn solve<C: Case>(impact: &C, outputs: Outputs, precision: Precision) -> Result<C::Outcome> {
+    solve_in(impact, outputs, precision.into()).0
+}
+
+/// Solves one impact in `arithmetic`, reporting which stage answered.
+pub fn solve_in<C: Case>(
+    impact: &C,
+    outputs: Outputs,
+    arithmetic: Arithmetic,
+) -> (Result<C::Outcome>, Stage) {
+    let fixed = impact.fix(&[]);
+    let in_range = arithmetic == Arithmetic::Fast && all_in_fast_range(impact, C::INPUTS);
+    impact.evaluate(&fixed, outputs, arithmetic, in_range)
+}
+
+/// One case prepared for many impacts that differ only in the `swept`
+/// inputs (a sweep): what the others fix is validated, and their fast range
+/// checked, once.
+#[derive(Debug, Clone)]
+pub struct Solver<C: Case> {
+    fixed: C::Fixed,
+    outputs: Outputs,
+    arithmetic: Arithmetic,
+    /// Whether every input not swept is in the fast range.
+    fixed_in_range: bool,
+    swept: Vec<Input>,
+}
+
+impl<C: Case> Solver<C> {
+    /// Prepares `base`, whose `swept` inputs will change, for `outputs` in `precision`.
+    pub fn new(base: &C, swept: &[Input], outputs: Outputs, precision: Precision) -> Self {
+        let fixed_inputs: Vec<Input> = base.reads().into_iter().filter(|i| !swept.contains(i)).collect();
+        Solver {
+            fixed: base.fix(swept),
+            outputs,
+            arithmetic: precision.into(),
+            fixed_in_range: all_in_fast_range(base, &fixed_inputs),
+            swept: swept.to_vec(),
+        }
+    }
+
+    /// The optional outputs computed.
+    pub fn outputs(&self) -> Outputs {
+        self.outputs
+    }
+
+    /// Solves `impact` (the base with other values of the swept inputs).
+    pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
+        let in_range = self.arithmetic == Arithmetic::Fast
+            && self.fixed_in_range
+            && all_in_fast_range(impact, &self.swept);
+        impact
+            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range)
+            .0
+    }
+}
+
+/// The largest and smallest magnitudes (2^±200) the fast evaluation takes:
+/// products of up to five such inputs stay normal doubles, so no intermediate
+/// overflows or loses bits to underflow.
+const FAST_RANGE: (f64, f64) = (
+    1.0 / (1u128 << 100) as f64 / (1u128 << 100) as f64,
+    (1u128 << 100) as f64 * (1u128 << 100) as f64,
+);
+
+/// Whether the fast evaluation takes `x` (zero, or a magnitude in 2^±200).
+pub fn in_fast_range(x: f64) -> bool {
+    x == 0.0 || (FAST_RANGE.0..=FAST_RANGE.1).contains(&x.abs())
+}
+
+fn all_in_fast_range<C: Case>(impact: &C, inputs: &[Input]) -> bool {
+    inputs.iter().all(|&i| impact.input(i).is_none_or(in_fast_range))
+}
+
+/// Evaluates a validated impact: `model` is the model instantiated in each
+/// field. `Fast` answers in f64 when `in_range` and the f64 evaluation stays
+/// in range, else as `Exact`.
+pub(crate) fn evaluate<T>(
+    arithmetic: Arithmetic,
+    in_range: bool,
+    model: impl Model<T>,
+) -> (Result<T>, Stage) {
+    match arithmetic {
+        Arithmetic::Fast if in_range => fast_or_exact(&model),
+        Arithmetic::Plain => fast_or_exact(&model),
+        Arithmetic::Fast | Arithmetic::Exact => adaptive(&model),
+        Arithmetic::Rational => (decided(model.run::<Fraction>()), Stage::Rational),
+    }
+}
+
+/// The f64 answer, or the exact one where the f64 evaluation leaves the f64
+/// range (an output that overflows, a decision on an infinity or a NaN).
+fn fast_or_exact<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
+    match model.run::<f64>() {
+        Ok(v) => (Ok(v), Stage::Fast),
+        Err(Fail::Refused(ImpactError::OutputNotFinite { .. }) | Fail::Undecided(OutOfRange)) => {
+            adaptive(model)
+        }
+        Err(Fail::Refused(e)) => (Err(e), Stage::Fast),
+    }
+}
+
+/// The model of one validated impact, ready to run in any field.
+pub(crate) trait Model<T> {
+    /// Evaluates the model in `N`.
+    fn run<N: Field>(&self) -> Exact<N, T>;
+}
+
+/// Runs the model compensated; if that cannot decide because of the range, in
+/// double-double; if that cannot decide either, or the compensated value was
+/// too close to a zero or a rounding midpoint (perhaps exactly on it), in
+/// double-double tracking exact operations (decides ties and cancelled zeros
+/// formed without a quotient); and last in exact fractions, which decide
+/// everything: its undecided case is uninhabited.
+fn adaptive<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
+    let settled = |result: Exact<Bounded, T>| match result {
+        Ok(v) => Some(Ok(v)),
+        Err(Fail::Refused(e)) => Some(Err(e)),
+        Err(Fail::Undecided(Undecided)) => None,
+    };
+    let why = match model.run::<Compensated>() {
+        Ok(v) => return (Ok(v), Stage::Compensated),
+        Err(Fail::Refused(e)) => return (Err(e), Stage::Compensated),
+        Err(Fail::Undecided(why)) => why,
+    };
+    let double_double = match why {
+        Unsettled::Range => settled(model.run::<Bounded>()),
+        Unsettled::Close => None,
+    };
+    let tracked = || match model.run::<Bounded<true>>() {
+        Ok(v) => Some(Ok(v)),
+        Err(Fail::Refused(e)) => Some(Err(e)),
+        Err(Fail::Undecided(Undecided)) => None,
+    };
+    if let Some(answer) = double_double.or_else(tracked) {
+        return (answer, Stage::DoubleDouble);
+    }
+    (decided(model.run::<Fraction>()), Stage::Rational)
+}
+
+/// The rational pass's result: an answer or the model's refusal.
+fn decided<T>(result: std::result::Result<T, Fail<Infallible>>) -> Result<T> {
+    result.map_err(|fail| match fail {
+        Fail::Refused(e) => e,
+        Fail::Undecided(never) => match never {},
+    })
+}

@@ -1,0 +1,453 @@
+//! The planar case: a rigid lamina or a point mass against a barrier, with
+//! one tangential law (the normal, oblique and tangential endpoints).
+
+use super::{Arithmetic, Case, Model, Stage, evaluate};
+use crate::arith::Field;
+use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
+use crate::model::Exact;
+use crate::model::planar::{self as model, PointMass};
+use crate::outcome::{Outputs, PlanarOutcome};
+use crate::quantity::Value;
+use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
+
+/// The tangential law of a rigid-body impact, with its coefficients.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    /// No tangential impulse (`μ = 0`), kinematic restitution `e ∈ [0, 1]` (section 2.1).
+    Frictionless {
+        /// `e`.
+        restitution: f64,
+    },
+    /// A prescribed impulse ratio `μ = P_t / P_n` (Eqs 2, 4). Refused when it
+    /// gives `D ≤ 0` or creates energy; the error states the admissible interval.
+    ImpulseRatio {
+        /// `e ∈ [0, 1]`.
+        restitution: f64,
+        /// `μ`.
+        impulse_ratio: f64,
+    },
+    /// Coulomb friction `f ≥ 0`: `μ = μ_c` when `|μ_c| ≤ f` (sticking,
+    /// `V_ct = 0`), otherwise `|μ| = f` opposing the initial slip (sliding).
+    Friction {
+        /// `e ∈ [0, 1]`.
+        restitution: f64,
+        /// `f ≥ 0`.
+        friction: f64,
+    },
+    /// The bilinear tangential-restitution model (section 3, Eqs 20–27): the
+    /// ratio that gives `V_ct = −e_t v_ct` when `|μ| ≤ f`, else sliding.
+    TangentialRestitution {
+        /// `e ∈ [0, 1]`.
+        restitution: f64,
+        /// `f ≥ 0`.
+        friction: f64,
+        /// `e_t ∈ [−1, 1]` (`−1`: no tangential impulse from restitution).
+        tangential_restitution: f64,
+    },
+    /// The Appendix's two-phase kinetic restitution: `R = P_n^R / P_n^A`
+    /// (Eq 9) with the approach and rebound impulse ratios (Eqs 12, 13).
+    KineticRestitution {
+        /// `R ∈ [0, 1]`.
+        value: f64,
+        /// `μ_A = P_t^A / P_n^A`.
+        approach_impulse_ratio: f64,
+        /// `μ_R = P_t^R / P_n^R`.
+        rebound_impulse_ratio: f64,
+    },
+}
+
+impl Law {
+    /// The law's coefficients checked in range, in request order.
+    fn validate(&self) -> Result<Law> {
+        let e = |e| in_range(Input::Restitution, e, 0.0, 1.0);
+        let f = |f| in_range(Input::Friction, f, 0.0, f64::INFINITY);
+        Ok(match *self {
+            Law::Frictionless { restitution } => Law::Frictionless {
+                restitution: e(restitution)?,
+            },
+            Law::ImpulseRatio {
+                restitution,
+                impulse_ratio,
+            } => Law::ImpulseRatio {
+                restitution: e(restitution)?,
+                impulse_ratio: finite(Input::ImpulseRatio, impulse_ratio)? + 0.0,
+            },
+            Law::Friction {
+                restitution,
+                friction,
+            } => Law::Friction {
+                restitution: e(restitution)?,
+                friction: f(friction)?,
+            },
+            Law::TangentialRestitution {
+                restitution,
+                friction,
+                tangential_restitution,
+            } => Law::TangentialRestitution {
+                restitution: e(restitution)?,
+                friction: f(friction)?,
+                tangential_restitution: in_range(
+                    Input::TangentialRestitution,
+                    tangential_restitution,
+                    -1.0,
+                    1.0,
+                )?,
+            },
+            Law::KineticRestitution {
+                value,
+                approach_impulse_ratio,
+                rebound_impulse_ratio,
+            } => Law::KineticRestitution {
+                value: in_range(Input::KineticRestitution, value, 0.0, 1.0)?,
+                approach_impulse_ratio: finite(Input::ApproachImpulseRatio, approach_impulse_ratio)?,
+                rebound_impulse_ratio: finite(Input::ReboundImpulseRatio, rebound_impulse_ratio)?,
+            },
+        })
+    }
+
+    /// The slot of a coefficient this law reads.
+    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
+        match (self, input) {
+            (
+                Law::Frictionless { restitution }
+                | Law::ImpulseRatio { restitution, .. }
+                | Law::Friction { restitution, .. }
+                | Law::TangentialRestitution { restitution, .. },
+                Input::Restitution,
+            ) => Some(restitution),
+            (Law::ImpulseRatio { impulse_ratio, .. }, Input::ImpulseRatio) => Some(impulse_ratio),
+            (
+                Law::Friction { friction, .. } | Law::TangentialRestitution { friction, .. },
+                Input::Friction,
+            ) => Some(friction),
+            (
+                Law::TangentialRestitution {
+                    tangential_restitution,
+                    ..
+                },
+                Input::TangentialRestitution,
+            ) => Some(tangential_restitution),
+            (Law::KineticRestitution { value, .. }, Input::KineticRestitution) => Some(value),
+            (
+                Law::KineticRestitution {
+                    approach_impulse_ratio,
+                    ..
+                },
+                Input::ApproachImpulseRatio,
+            ) => Some(approach_impulse_ratio),
+            (
+                Law::KineticRestitution {
+                    rebound_impulse_ratio,
+                    ..
+                },
+                Input::ReboundImpulseRatio,
+            ) => Some(rebound_impulse_ratio),
+            _ => None,
+        }
+    }
+
+    /// The law's name, for messages.
+    pub fn describe(&self) -> &'static str {
+        match self {
+            Law::Frictionless { .. } => "a frictionless rigid body",
+            Law::ImpulseRatio { .. } => "a prescribed impulse ratio",
+            Law::Friction { .. } => "Coulomb friction",
+            Law::TangentialRestitution { .. } => "tangential restitution",
+            Law::KineticRestitution { .. } => "two-phase kinetic restitution",
+        }
+    }
+}
+
+/// The body of a planar impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlanarBody {
+    /// A point mass: no inertia, no contact offset, no rotation; its law is
+    /// frictionless restitution.
+    PointMass {
+        /// Mass `m > 0`.
+        mass: f64,
+    },
+    /// A rigid lamina.
+    Rigid {
+        /// Mass `m > 0`.
+        mass: f64,
+        /// Centroidal moment of inertia `I = m k² > 0`.
+        inertia: f64,
+        /// Where the centre of mass sits relative to the contact point.
+        contact: Contact,
+    },
+}
+
+/// A planar impact: a body, its initial velocities and the law of the contact.
+///
+/// A point mass takes only `velocity.normal`, `velocity.tangential` and a
+/// [`Law::Frictionless`] law; any other combination is refused when solved
+/// (a spin or a tangential law needs a moment of inertia).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarImpact {
+    /// The body.
+    pub body: PlanarBody,
+    /// Initial velocities of the centre of mass and angular velocity.
+    pub velocity: PlanarVelocity,
+    /// The tangential law and its coefficients.
+    pub law: Law,
+}
+
+impl PlanarImpact {
+    /// A rigid body's impact.
+    pub fn rigid(mass: f64, inertia: f64, contact: Contact, velocity: PlanarVelocity, law: Law) -> Self {
+        PlanarImpact {
+            body: PlanarBody::Rigid {
+                mass,
+                inertia,
+                contact,
+            },
+            velocity,
+            law,
+        }
+    }
+
+    /// A point mass's normal impact with restitution `e`.
+    pub fn point_mass(mass: f64, normal_velocity: f64, tangential_velocity: f64, restitution: f64) -> Self {
+        PlanarImpact {
+            body: PlanarBody::PointMass { mass },
+            velocity: PlanarVelocity {
+                normal: normal_velocity,
+                tangential: tangential_velocity,
+                angular: 0.0,
+            },
+            law: Law::Frictionless { restitution },
+        }
+    }
+
+    /// The validated scene of a rigid body: finite inputs, an approaching contact.
+    pub fn scene(&self) -> Result<PlanarScene> {
+        match self.body {
+            PlanarBody::Rigid {
+                mass,
+                inertia,
+                contact,
+            } => PlanarScene::new(Body::new(mass, inertia)?, contact, self.velocity),
+            PlanarBody::PointMass { .. } => Err(ImpactError::NeedsInertia {
+                input: Input::TangentialOffset,
+            }),
+        }
+    }
+
+    /// Checks a point mass: positive mass, no spin, an approaching normal
+    /// velocity, a frictionless law with `e ∈ [0, 1]`.
+    fn point_mass_inputs(&self, mass: f64) -> Result<PointMass> {
+        let mass = positive(Input::Mass, mass)?;
+        let v = self.velocity;
+        let vn = finite(Input::NormalVelocity, v.normal)?;
+        let vt = finite(Input::TangentialVelocity, v.tangential)?;
+        if finite(Input::AngularVelocity, v.angular)? != 0.0 {
+            return Err(ImpactError::NeedsInertia {
+                input: Input::AngularVelocity,
+            });
+        }
+        let Law::Frictionless { restitution } = self.law else {
+            return Err(ImpactError::NeedsInertia {
+                input: law_input(&self.law),
+            });
+        };
+        if vn >= 0.0 {
+            return Err(ImpactError::NotApproaching {
+                input: Input::NormalVelocity,
+                normal_contact_velocity: vn + 0.0,
+            });
+        }
+        let e = in_range(Input::Restitution, restitution, 0.0, 1.0)?;
+        Ok(PointMass { mass, vn, vt, e })
+    }
+}
+
+/// The first coefficient a law reads that only a rigid body can use.
+fn law_input(law: &Law) -> Input {
+    match law {
+        Law::Frictionless { .. } => Input::Restitution,
+        Law::ImpulseRatio { .. } => Input::ImpulseRatio,
+        Law::Friction { .. } | Law::TangentialRestitution { .. } => Input::Friction,
+        Law::KineticRestitution { .. } => Input::KineticRestitution,
+    }
+}
+
+/// A validated rigid-body impact, ready to run in any field.
+struct Rigid<'a> {
+    scene: &'a PlanarScene,
+    law: Law,
+    outputs: Outputs,
+}
+
+impl Model<PlanarOutcome> for Rigid<'_> {
+    #[inline(always)]
+    fn run<N: Field>(&self) -> Exact<N, PlanarOutcome> {
+        model::rigid::<N>(self.scene, &self.law, self.outputs)
+    }
+}
+
+struct Point {
+    mass: PointMass,
+    outputs: Outputs,
+}
+
+impl Model<PlanarOutcome> for Point {
+    #[inline(always)]
+    fn run<N: Field>(&self) -> Exact<N, PlanarOutcome> {
+        model::point_mass::<N>(&self.mass, self.outputs)
+    }
+}
+
+impl Case for PlanarImpact {
+    type Outcome = PlanarOutcome;
+    /// The rigid body's scene, when no axis changes it.
+    type Fixed = Option<Result<PlanarScene>>;
+
+    const INPUTS: &'static [Input] = &[
+        Input::Mass,
+        Input::Inertia,
+        Input::TangentialOffset,
+        Input::NormalOffset,
+        Input::NormalVelocity,
+        Input::TangentialVelocity,
+        Input::AngularVelocity,
+        Input::Restitution,
+        Input::Friction,
+        Input::ImpulseRatio,
+        Input::TangentialRestitution,
+        Input::KineticRestitution,
+        Input::ApproachImpulseRatio,
+        Input::ReboundImpulseRatio,
+    ];
+
+    const OUTPUTS: &'static [Output] = &[
+        Output::FinalNormalVelocity,
+        Output::FinalTangentialVelocity,
+        Output::FinalAngularVelocity,
+        Output::InitialNormalContactVelocity,
+        Output::InitialTangentialContactVelocity,
+        Output::FinalNormalContactVelocity,
+        Output::FinalTangentialContactVelocity,
+        Output::NormalImpulse,
+        Output::TangentialImpulse,
+        Output::ImpulseRatio,
+        Output::CriticalImpulseRatio,
+        Output::Restitution,
+        Output::KineticRestitution,
+        Output::Regime,
+        Output::InitialEnergy,
+        Output::FinalEnergy,
+        Output::EnergyLoss,
+        Output::MaxEnergyLoss,
+        Output::NormalizedEnergyLoss,
+    ];
+
+    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
+        let velocity = &mut self.velocity;
+        match (&mut self.body, input) {
+            (PlanarBody::PointMass { mass } | PlanarBody::Rigid { mass, .. }, Input::Mass) => Some(mass),
+            (_, Input::NormalVelocity) => Some(&mut velocity.normal),
+            (_, Input::TangentialVelocity) => Some(&mut velocity.tangential),
+            (PlanarBody::Rigid { inertia, .. }, Input::Inertia) => Some(inertia),
+            (PlanarBody::Rigid { contact, .. }, Input::TangentialOffset) => {
+                Some(&mut contact.tangential_offset)
+            }
+            (PlanarBody::Rigid { contact, .. }, Input::NormalOffset) => Some(&mut contact.normal_offset),
+            (PlanarBody::Rigid { .. }, Input::AngularVelocity) => Some(&mut velocity.angular),
+            (PlanarBody::PointMass { .. }, _) if input != Input::Restitution => None,
+            _ => self.law.input_mut(input),
+        }
+    }
+
+    fn describe(&self) -> &'static str {
+        match self.body {
+            PlanarBody::PointMass { .. } => "a point mass",
+            PlanarBody::Rigid { .. } => self.law.describe(),
+        }
+    }
+
+    fn output(o: &PlanarOutcome, output: Output) -> Value {
+        let energy = o.energy.unwrap_or(crate::outcome::PlanarEnergy {
+            initial: f64::NAN,
+            r#final: f64::NAN,
+            loss: f64::NAN,
+            max_loss: f64::NAN,
+            normalized_loss: f64::NAN,
+        });
+        Value::Number(match output {
+            Output::FinalNormalVelocity => o.final_velocity.normal,
+            Output::FinalTangentialVelocity => o.final_velocity.tangential,
+            Output::FinalAngularVelocity => o.final_velocity.angular,
+            Output::InitialNormalContactVelocity => o.contact_velocity.initial.normal,
+            Output::InitialTangentialContactVelocity => o.contact_velocity.initial.tangential,
+            Output::FinalNormalContactVelocity => o.contact_velocity.r#final.normal,
+            Output::FinalTangentialContactVelocity => o.contact_velocity.r#final.tangential,
+            Output::NormalImpulse => o.impulse.normal,
+            Output::TangentialImpulse => o.impulse.tangential,
+            Output::ImpulseRatio => o.impulse_ratio,
+            Output::CriticalImpulseRatio => o.critical_impulse_ratio.unwrap_or(f64::NAN),
+            Output::Restitution => o.restitution,
+            Output::KineticRestitution => o.kinetic_restitution,
+            Output::Regime => return Value::Text(o.regime.as_str()),
+            Output::InitialEnergy => energy.initial,
+            Output::FinalEnergy => energy.r#final,
+            Output::EnergyLoss => energy.loss,
+            Output::MaxEnergyLoss => energy.max_loss,
+            Output::NormalizedEnergyLoss => energy.normalized_loss,
+            Output::FinalSpin | Output::TorsionalImpulse | Output::SwitchSpin => f64::NAN,
+        })
+    }
+
+    fn fix(&self, swept: &[Input]) -> Self::Fixed {
+        const SCENE: [Input; 7] = [
+            Input::Mass,
+            Input::Inertia,
+            Input::TangentialOffset,
+            Input::NormalOffset,
+            Input::NormalVelocity,
+            Input::TangentialVelocity,
+            Input::AngularVelocity,
+        ];
+        let rigid = matches!(self.body, PlanarBody::Rigid { .. });
+        (rigid && !swept.iter().any(|i| SCENE.contains(i))).then(|| self.scene())
+    }
+
+    fn evaluate(
+        &self,
+        fixed: &Self::Fixed,
+        outputs: Outputs,
+        arithmetic: Arithmetic,
+        in_range: bool,
+    ) -> (Result<PlanarOutcome>, Stage) {
+        let stage = match arithmetic {
+            Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
+            Arithmetic::Exact => Stage::Compensated,
+            Arithmetic::Rational => Stage::Rational,
+        };
+        let refused = |e| (Err(e), stage);
+        match self.body {
+            PlanarBody::PointMass { mass } => match self.point_mass_inputs(mass) {
+                Ok(mass) => evaluate(arithmetic, in_range, Point { mass, outputs }),
+                Err(e) => refused(e),
+            },
+            PlanarBody::Rigid { .. } => {
+                let built;
+                let scene = match fixed {
+                    Some(Ok(scene)) => scene,
+                    Some(Err(e)) => return refused(e.clone()),
+                    None => match self.scene() {
+                        Ok(scene) => {
+                            built = scene;
+                            &built
+                        }
+                        Err(e) => return refused(e),
+                    },
+                };
+                match self.law.validate() {
+                    Ok(law) => evaluate(arithmetic, in_range, Rigid { scene, law, outputs }),
+                    Err(e) => refused(e),
+                }
+            }
+        }
+    }
+}

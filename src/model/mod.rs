@@ -1,0 +1,75 @@
+//! The impact model, written once over a [`Field`]: the planar laws
+//! (`planar.rs`: frictionless, prescribed ratio, Coulomb friction, tangential
+//! restitution, the two-phase kinetic model, the point mass) and the torsional
+//! law (`torsional.rs`), from the momentum equations (Eqs A-1…A-3) closed by
+//! Eq 1 and one tangential law.
+//!
+//! The same code answers both precisions: evaluated in `f64` it is the `fast`
+//! mode; evaluated in the exact arithmetics of [`crate::arith`] every output is
+//! formed as its exact value and rounded once, and every regime decision is
+//! the exact sign of a value. Forms are chosen for the f64 evaluation (fused
+//! contact velocities, `(1 − e) v_cn` rather than `v_cn + V_cn`, quotients
+//! that cannot overflow in between); any algebraically equal form has the same
+//! exact value, so the choice costs the exact mode nothing in correctness.
+//!
+//! A physics change goes here, once; [`crate::impact`] validates the inputs
+//! and chooses the arithmetic.
+
+pub(crate) mod planar;
+pub(crate) mod torsional;
+
+use std::cmp::Ordering;
+
+use crate::arith::Field;
+use crate::error::{ImpactError, Output};
+
+/// Why the model gave no answer in a field whose undecided signs and
+/// roundings are reported as `U` ([`Field::Undecided`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Fail<U> {
+    /// A sign or a rounding the field could not decide.
+    Undecided(U),
+    /// The model's own refusal (the same in every field).
+    Refused(ImpactError),
+}
+
+impl<U> From<ImpactError> for Fail<U> {
+    #[inline(always)]
+    fn from(e: ImpactError) -> Self {
+        Fail::Refused(e)
+    }
+}
+
+/// The model's result in the field `N`.
+pub(crate) type Exact<N, T> = Result<T, Fail<<N as Field>::Undecided>>;
+
+#[inline(always)]
+pub(crate) fn sign<N: Field>(x: &N) -> Exact<N, Ordering> {
+    x.sign().map_err(Fail::Undecided)
+}
+
+#[inline(always)]
+pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
+    Ok(if sign(x)? == Ordering::Less {
+        x.neg()
+    } else {
+        x.clone()
+    })
+}
+
+/// The output correctly rounded (an exact zero as `+0.0`), or its refusal
+/// when it rounds beyond the f64 range.
+#[inline(always)]
+pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
+    let v = x.round().map_err(Fail::Undecided)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(ImpactError::OutputNotFinite { output }.into())
+    }
+}
+
+#[inline(always)]
+pub(crate) fn half<N: Field>() -> N {
+    N::of(0.5)
+}

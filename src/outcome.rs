@@ -1,0 +1,177 @@
+//! What an impact answers: the outcome types of the planar and torsional
+//! cases, and which optional outputs a caller asks for.
+
+use crate::scene::{ContactVelocity, PlanarVelocity};
+
+/// Which tangential law produced a planar answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Regime {
+    /// No tangential impulse (`μ = 0`).
+    Frictionless,
+    /// A prescribed impulse ratio `μ`, or the two-phase ratios `μ_A`, `μ_R`.
+    Prescribed,
+    /// Coulomb sliding through separation, `|μ| = f`.
+    Sliding,
+    /// Coulomb friction stops the slip: `μ = μ_c`, `V_ct = 0` ("rolling").
+    Sticking,
+    /// Tangential restitution: `V_ct = −e_t v_ct` (Eq 20), `|μ| ≤ f`.
+    Restitution,
+}
+
+impl Regime {
+    /// The regime's name as the API spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Regime::Frictionless => "frictionless",
+            Regime::Prescribed => "prescribed",
+            Regime::Sliding => "sliding",
+            Regime::Sticking => "sticking",
+            Regime::Restitution => "restitution",
+        }
+    }
+}
+
+/// Impulses the barrier applies to the body at the contact point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Impulse {
+    /// Normal impulse `P_n ≥ 0`.
+    pub normal: f64,
+    /// Tangential impulse `P_t`.
+    pub tangential: f64,
+}
+
+/// Initial and final contact-point velocities.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactVelocities {
+    /// `(v_cn, v_ct)`.
+    pub initial: ContactVelocity,
+    /// `(V_cn, V_ct)`.
+    pub r#final: ContactVelocity,
+}
+
+/// Which optional outputs a caller wants. The solver skips the rest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Outputs {
+    /// Compute the critical impulse ratio `μ_c` even where the law does not need it.
+    pub critical_impulse_ratio: bool,
+    /// Compute the energies (initial, final, `T_M`, `T_L*`). The sign of `T_L`
+    /// is always checked, because no answer may create energy.
+    pub energy: bool,
+}
+
+impl Outputs {
+    /// Every output.
+    pub const ALL: Outputs = Outputs {
+        critical_impulse_ratio: true,
+        energy: true,
+    };
+    /// Only what every answer carries (velocities, impulses, `μ`, `e`, `R`, regime).
+    pub const MINIMAL: Outputs = Outputs {
+        critical_impulse_ratio: false,
+        energy: false,
+    };
+}
+
+impl Default for Outputs {
+    fn default() -> Self {
+        Outputs::ALL
+    }
+}
+
+/// The outcome of a planar impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarOutcome {
+    /// Final velocities `V_n`, `V_t`, `Ω`.
+    pub final_velocity: PlanarVelocity,
+    /// Initial and final contact-point velocities.
+    pub contact_velocity: ContactVelocities,
+    /// Impulses `P_n`, `P_t`.
+    pub impulse: Impulse,
+    /// Applied impulse ratio `μ = P_t / P_n` (Eq 4).
+    pub impulse_ratio: f64,
+    /// Critical impulse ratio `μ_c` (the ratio that ends with `V_ct = 0`),
+    /// when asked for or needed by the law.
+    pub critical_impulse_ratio: Option<f64>,
+    /// Kinematic coefficient of restitution `e` (Eq 1).
+    pub restitution: f64,
+    /// Kinetic coefficient of restitution `R` (Eq 9).
+    pub kinetic_restitution: f64,
+    /// The law that produced the answer.
+    pub regime: Regime,
+    /// Energies, when asked for.
+    pub energy: Option<PlanarEnergy>,
+}
+
+/// Kinetic energies of a planar answer.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarEnergy {
+    /// Initial kinetic energy `½ m (v_n² + v_t²) + ½ I ω²`.
+    pub initial: f64,
+    /// Final kinetic energy `½ m (V_n² + V_t²) + ½ I Ω²`.
+    pub r#final: f64,
+    /// Energy loss `T_L` (Eq 8 in work form), `≥ 0` for every accepted answer.
+    pub loss: f64,
+    /// Maximum loss `T_M`: the loss when the contact point stops (`e = 0`, `V_ct = 0`).
+    pub max_loss: f64,
+    /// `T_L* = T_L / T_M` (Appendix), in `[0, 1]` for every accepted answer.
+    pub normalized_loss: f64,
+}
+
+/// Which branch of the torsional model applies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TorsionalRegime {
+    /// `|ω_n| ≤ ω_s`: `Ω_n = −e_z ω_n` (Eq 28).
+    Restitution,
+    /// `|ω_n| > ω_s`: rotational sliding through separation (Eq 30).
+    Sliding,
+}
+
+impl TorsionalRegime {
+    /// The regime's name as the API spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            TorsionalRegime::Restitution => "restitution",
+            TorsionalRegime::Sliding => "sliding",
+        }
+    }
+}
+
+/// Rotational kinetic energy about the normal axis.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RotationalEnergy {
+    /// `½ I_n ω_n²`.
+    pub initial: f64,
+    /// `½ I_n Ω_n²`.
+    pub r#final: f64,
+    /// `½ I_n (ω_n − Ω_n)(ω_n + Ω_n) ≥ 0`.
+    pub loss: f64,
+}
+
+/// The outcome of a torsional impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorsionalOutcome {
+    /// Final normal velocity `V_n = −e v_n`.
+    pub final_normal_velocity: f64,
+    /// Final spin `Ω_n`.
+    pub final_spin: f64,
+    /// Normal impulse `P_n = m (1 + e) |v_n|`.
+    pub normal_impulse: f64,
+    /// Torsional impulse `M_n = I_n (Ω_n − ω_n)` (Eq 29).
+    pub torsional_impulse: f64,
+    /// The branch used.
+    pub regime: TorsionalRegime,
+    /// The switch spin magnitude `ω_s` of Eq 31 (`≥ 0`).
+    pub switch_spin: f64,
+    /// Rotational energies, when asked for.
+    pub energy: Option<RotationalEnergy>,
+}
+
+impl Outputs {
+    /// The optional outputs that computing `outputs` needs.
+    pub fn needed_by(outputs: &[crate::quantity::Output]) -> Self {
+        Outputs {
+            critical_impulse_ratio: outputs.contains(&crate::quantity::Output::CriticalImpulseRatio),
+            energy: outputs.iter().any(|o| o.needs_energy()),
+        }
+    }
+}

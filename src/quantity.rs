@@ -1,0 +1,200 @@
+//! The named quantities of the service: every input an impact reads and every
+//! output it answers, each declared once with its symbol in the paper, its
+//! name in words and its path in the case's request or outcome (a JSON pointer
+//! on the wire, a column name in a sweep).
+//!
+//! The lists are macro-generated tables rather than hand-written `match`es in
+//! several places, so that adding a quantity is one line here; which case
+//! reads or answers a quantity, and how, is said once per case in
+//! [`crate::impact`].
+
+use std::fmt;
+
+/// Declares a field-less enum whose variants each carry a symbol, a name and a path.
+macro_rules! quantities {
+    (
+        $(#[$meta:meta])*
+        pub enum $enum:ident {
+            $($(#[doc = $doc:literal])* $variant:ident => ($symbol:literal, $name:literal, $path:literal),)*
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum $enum {
+            $($(#[doc = $doc])* $variant,)*
+        }
+
+        impl $enum {
+            /// Every variant, in declaration order.
+            pub const ALL: &'static [$enum] = &[$($enum::$variant,)*];
+
+            /// The paper's symbol (or a short name).
+            pub fn symbol(self) -> &'static str {
+                match self {
+                    $($enum::$variant => $symbol,)*
+                }
+            }
+
+            /// A plain-words name.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $($enum::$variant => $name,)*
+                }
+            }
+
+            /// Where the quantity sits in a request or outcome (a JSON pointer).
+            pub fn path(self) -> &'static str {
+                match self {
+                    $($enum::$variant => $path,)*
+                }
+            }
+        }
+    };
+}
+
+quantities! {
+    /// A named input of an impact request.
+    pub enum Input {
+        /// Mass `m`.
+        Mass => ("m", "mass", "/body/mass"),
+        /// Centroidal moment of inertia `I = m k²`.
+        Inertia => ("I", "moment of inertia", "/body/inertia"),
+        /// Tangential offset `d_c` of the centre of mass from the contact point.
+        TangentialOffset => ("d_c", "tangential offset", "/contact/tangential_offset"),
+        /// Normal offset `d_d` of the centre of mass from the contact point.
+        NormalOffset => ("d_d", "normal offset", "/contact/normal_offset"),
+        /// Initial normal velocity of the centre of mass `v_n`.
+        NormalVelocity => ("v_n", "normal velocity", "/velocity/normal"),
+        /// Initial tangential velocity of the centre of mass `v_t`.
+        TangentialVelocity => ("v_t", "tangential velocity", "/velocity/tangential"),
+        /// Initial angular velocity `ω`.
+        AngularVelocity => ("ω", "angular velocity", "/velocity/angular"),
+        /// Kinematic coefficient of restitution `e`.
+        Restitution => ("e", "coefficient of restitution", "/restitution"),
+        /// Coulomb friction coefficient `f`.
+        Friction => ("f", "friction coefficient", "/friction"),
+        /// Prescribed impulse ratio `μ`.
+        ImpulseRatio => ("μ", "impulse ratio", "/impulse_ratio"),
+        /// Tangential coefficient of restitution `e_t`.
+        TangentialRestitution => ("e_t", "tangential coefficient of restitution", "/tangential_restitution"),
+        /// Kinetic coefficient of restitution `R`.
+        KineticRestitution => ("R", "kinetic coefficient of restitution", "/kinetic_restitution/value"),
+        /// Approach-phase impulse ratio `μ_A`.
+        ApproachImpulseRatio => ("μ_A", "approach impulse ratio", "/kinetic_restitution/approach_impulse_ratio"),
+        /// Rebound-phase impulse ratio `μ_R`.
+        ReboundImpulseRatio => ("μ_R", "rebound impulse ratio", "/kinetic_restitution/rebound_impulse_ratio"),
+        /// Moment of inertia about the normal axis `I_n`.
+        NormalInertia => ("I_n", "moment of inertia about the normal", "/body/normal_inertia"),
+        /// Initial spin about the normal axis `ω_n`.
+        Spin => ("ω_n", "spin about the normal", "/velocity/spin"),
+        /// Torsional coefficient of restitution `e_z`.
+        TorsionalRestitution => ("e_z", "torsional coefficient of restitution", "/torsion/restitution"),
+        /// Torsional friction coefficient `μ_z`.
+        TorsionalFriction => ("μ_z", "torsional friction coefficient", "/torsion/friction"),
+        /// Pitch radius `ρ_p` of the torsional friction impulse.
+        PitchRadius => ("ρ_p", "pitch radius", "/torsion/pitch_radius"),
+    }
+}
+
+impl fmt::Display for Input {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}", self.name(), self.symbol())
+    }
+}
+
+quantities! {
+    /// A named output of an impact outcome.
+    pub enum Output {
+        /// Final normal velocity `V_n`.
+        FinalNormalVelocity => ("V_n", "final normal velocity", "/final_velocity/normal"),
+        /// Final tangential velocity `V_t`.
+        FinalTangentialVelocity => ("V_t", "final tangential velocity", "/final_velocity/tangential"),
+        /// Final angular velocity `Ω`.
+        FinalAngularVelocity => ("Ω", "final angular velocity", "/final_velocity/angular"),
+        /// Final spin about the normal `Ω_n`.
+        FinalSpin => ("Ω_n", "final spin about the normal", "/final_velocity/spin"),
+        /// Initial normal contact-point velocity `v_cn`.
+        InitialNormalContactVelocity => ("v_cn", "initial normal contact velocity", "/contact_velocity/initial/normal"),
+        /// Initial tangential contact-point velocity `v_ct`.
+        InitialTangentialContactVelocity => ("v_ct", "initial tangential contact velocity", "/contact_velocity/initial/tangential"),
+        /// Final normal contact-point velocity `V_cn`.
+        FinalNormalContactVelocity => ("V_cn", "final normal contact velocity", "/contact_velocity/final/normal"),
+        /// Final tangential contact-point velocity `V_ct`.
+        FinalTangentialContactVelocity => ("V_ct", "final tangential contact velocity", "/contact_velocity/final/tangential"),
+        /// Normal impulse `P_n`.
+        NormalImpulse => ("P_n", "normal impulse", "/impulse/normal"),
+        /// Tangential impulse `P_t`.
+        TangentialImpulse => ("P_t", "tangential impulse", "/impulse/tangential"),
+        /// Torsional impulse `M_n`.
+        TorsionalImpulse => ("M_n", "torsional impulse", "/impulse/torsional"),
+        /// Applied impulse ratio `μ`.
+        ImpulseRatio => ("μ", "impulse ratio", "/impulse_ratio"),
+        /// Critical impulse ratio `μ_c`.
+        CriticalImpulseRatio => ("μ_c", "critical impulse ratio", "/critical_impulse_ratio"),
+        /// Kinematic coefficient of restitution `e`.
+        Restitution => ("e", "coefficient of restitution", "/restitution"),
+        /// Kinetic coefficient of restitution `R`.
+        KineticRestitution => ("R", "kinetic coefficient of restitution", "/kinetic_restitution"),
+        /// The regime (which branch of the law answered).
+        Regime => ("regime", "regime", "/regime"),
+        /// Spin at the switch between the torsional branches (Eq 31).
+        SwitchSpin => ("ω_switch", "switch spin", "/switch_spin"),
+        /// Initial kinetic energy.
+        InitialEnergy => ("T_i", "initial kinetic energy", "/energy/initial"),
+        /// Final kinetic energy.
+        FinalEnergy => ("T_f", "final kinetic energy", "/energy/final"),
+        /// Kinetic energy loss `T_L`.
+        EnergyLoss => ("T_L", "energy loss", "/energy/loss"),
+        /// Maximum energy loss `T_M`.
+        MaxEnergyLoss => ("T_M", "maximum energy loss", "/energy/max_loss"),
+        /// Normalised energy loss `T_L* = T_L / T_M`.
+        NormalizedEnergyLoss => ("T_L*", "normalized energy loss", "/energy/normalized_loss"),
+    }
+}
+
+impl Output {
+    /// Whether computing this output needs the energies.
+    pub fn needs_energy(self) -> bool {
+        matches!(
+            self,
+            Output::InitialEnergy
+                | Output::FinalEnergy
+                | Output::EnergyLoss
+                | Output::MaxEnergyLoss
+                | Output::NormalizedEnergyLoss
+        )
+    }
+}
+
+impl fmt::Display for Output {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol())
+    }
+}
+
+/// One output's value: a number, or a name (a regime).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    /// A number.
+    Number(f64),
+    /// A name.
+    Text(&'static str),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_are_json_pointers_and_unique_per_list() {
+        for list in [
+            Input::ALL.iter().map(|i| i.path()).collect::<Vec<_>>(),
+            Output::ALL.iter().map(|o| o.path()).collect(),
+        ] {
+            for (i, p) in list.iter().enumerate() {
+                assert!(p.starts_with('/') && !p.ends_with('/'), "{p}");
+                assert!(!list[i + 1..].contains(p), "{p} twice");
+            }
+        }
+    }
+}
