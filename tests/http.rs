@@ -552,3 +552,106 @@ async fn precision_is_chosen_echoed_and_exact_over_http() {
         Some("/precision"),
     );
 }
+
+/// A number beyond a double's range (`1e999`) is well-formed JSON with a value
+/// the schema cannot take: a 422 naming the member, like any other bad number,
+/// in a request and in a sweep's `base` or axis values; JSON broken after it
+/// is still a 400.
+#[tokio::test]
+async fn numbers_beyond_a_double_are_422_problems_naming_the_member() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let oblique = maw_disc(0.4).to_string();
+    let cases = [
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"mass\":1.0", "\"mass\":1e999", 1),
+            "/body/mass",
+        ),
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"normal\":-1.0", "\"normal\":-1e999", 1),
+            "/velocity/normal",
+        ),
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"friction\":0.123", "\"friction\":123e400", 1),
+            "/friction",
+        ),
+        (
+            "/v1/sweeps",
+            format!(
+                r#"{{"case": "oblique", "base": {}, "axes": [{{"path": "/velocity/tangential", "values": [0.4]}}]}}"#,
+                oblique.replacen("\"mass\":1.0", "\"mass\":1e999", 1)
+            ),
+            "/base/body/mass",
+        ),
+        (
+            "/v1/sweeps",
+            format!(
+                r#"{{"case": "oblique", "base": {oblique}, "axes": [{{"path": "/velocity/tangential", "values": [0.4, 1e999]}}]}}"#
+            ),
+            "/axes/0/values/1",
+        ),
+    ];
+    for (path, body, pointer) in cases {
+        assert!(body.contains("e999") || body.contains("e400"), "{body}");
+        let (status, ct, problem) = app
+            .post_raw(path, Some("application/json"), body.into_bytes())
+            .await;
+        assert_problem(
+            status,
+            &ct,
+            &problem,
+            StatusCode::UNPROCESSABLE_ENTITY,
+            Some(pointer),
+        );
+        let detail = problem["detail"].as_str().unwrap();
+        assert!(detail.starts_with("number out of range"), "{problem}");
+        assert!(!detail.contains("line"), "{problem}");
+    }
+    // Malformed JSON after the huge number is still malformed.
+    let broken = br#"{"body": {"mass": 1e999, "inertia": 1.0}, "contact": }"#.to_vec();
+    let (status, ct, problem) = app
+        .post_raw("/v1/impacts/oblique", Some("application/json"), broken)
+        .await;
+    assert_problem(status, &ct, &problem, StatusCode::BAD_REQUEST, None);
+}
+
+/// A wrong type on a number says "expected a number", not Rust's "f64"; on a
+/// count, "expected a non-negative whole number".
+#[tokio::test]
+async fn wrong_types_are_described_in_plain_words() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let mut request = maw_disc(0.4);
+    request["body"]["mass"] = json!("x");
+    let (status, _, problem) = app.post("/v1/impacts/oblique", &request).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/body/mass");
+    assert_eq!(problem["detail"], "invalid type: string \"x\", expected a number");
+    // An optional number, and a number in a sweep's base (parsed on its own).
+    let mut request = maw_disc(0.4);
+    request["friction"] = json!(true);
+    let (_, _, problem) = app.post("/v1/impacts/oblique", &request).await;
+    assert_eq!(problem["pointer"], "/friction");
+    assert_eq!(
+        problem["detail"],
+        "invalid type: boolean `true`, expected a number"
+    );
+    let mut base = maw_disc(0.4);
+    base["velocity"]["normal"] = json!(null);
+    let sweep = json!({"case": "oblique", "base": base,
+                       "axes": [{"path": "/velocity/tangential", "values": [0.4]}]});
+    let (status, _, problem) = app.post("/v1/sweeps", &sweep).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/base/velocity/normal");
+    assert_eq!(problem["detail"], "invalid type: null, expected a number");
+    let sweep = json!({"case": "oblique", "base": maw_disc(0.4),
+                       "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 1.0, "count": -3}}]});
+    let (status, _, problem) = app.post("/v1/sweeps", &sweep).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/axes/0/linspace/count");
+    assert_eq!(
+        problem["detail"],
+        "invalid value: integer `-3`, expected a non-negative whole number"
+    );
+}
