@@ -655,3 +655,105 @@ async fn wrong_types_are_described_in_plain_words() {
         "invalid value: integer `-3`, expected a non-negative whole number"
     );
 }
+
+/// The served document declares the bearer token only when the service has an
+/// API key, and then on every operation but `/healthz`.
+#[tokio::test]
+async fn the_served_openapi_document_declares_security_only_with_an_api_key() {
+    fn security_members(v: &Value, at: &str, found: &mut Vec<String>) {
+        match v {
+            Value::Object(map) => {
+                for (k, x) in map {
+                    let here = format!("{at}/{}", k.replace('~', "~0").replace('/', "~1"));
+                    if k == "security" || k == "securitySchemes" {
+                        found.push(here.clone());
+                    }
+                    security_members(x, &here, found);
+                }
+            }
+            Value::Array(items) => {
+                for (i, x) in items.iter().enumerate() {
+                    security_members(x, &format!("{at}/{i}"), found);
+                }
+            }
+            _ => {}
+        }
+    }
+    let open = spawn_app(ServiceConfig::default()).await;
+    let doc: Value = open
+        .client
+        .get(format!("{}/openapi.json", open.base))
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    let mut found = Vec::new();
+    security_members(&doc, "", &mut found);
+    assert!(found.is_empty(), "no key, yet security at {found:?}");
+
+    let keyed = spawn_app(ServiceConfig {
+        api_key: Some("s3cret-token".into()),
+        ..ServiceConfig::default()
+    })
+    .await;
+    let doc: Value = keyed
+        .client
+        .get(format!("{}/openapi.json", keyed.base))
+        .bearer_auth("s3cret-token")
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    let scheme = &doc["components"]["securitySchemes"]["bearer"];
+    assert_eq!(scheme["type"], "http", "{scheme}");
+    assert_eq!(scheme["scheme"], "bearer", "{scheme}");
+    assert!(doc.get("security").is_none(), "no document-wide requirement");
+    let mut operations = 0;
+    for (path, item) in doc["paths"].as_object().unwrap() {
+        for (method, operation) in item.as_object().unwrap() {
+            operations += 1;
+            if path == "/healthz" {
+                assert!(operation.get("security").is_none(), "{method} {path}");
+            } else {
+                assert_eq!(operation["security"], json!([{"bearer": []}]), "{method} {path}");
+            }
+        }
+    }
+    assert!(operations >= 8, "{operations}");
+}
+
+/// The documented examples are real: the planar answer's example is the
+/// server's answer to the oblique request example, the torsional one to the
+/// torsional request example, and the Problem example is a refusal the server
+/// gives (the oblique example made to recede).
+#[tokio::test]
+async fn documented_examples_are_the_servers_real_answers() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let doc: Value = serde_json::from_str(&openapi_json()).unwrap();
+    let schema = |name: &str| doc["components"]["schemas"][name].clone();
+    let example = |name: &str| {
+        let s = schema(name);
+        s.get("example")
+            .cloned()
+            .or_else(|| s["examples"].get(0).cloned())
+            .unwrap_or_else(|| panic!("{name} has no example"))
+    };
+    for (path, request, response) in [
+        ("/v1/impacts/oblique", "ObliqueRequest", "PlanarResponse"),
+        ("/v1/impacts/torsional", "TorsionalRequest", "TorsionalResponse"),
+    ] {
+        let (status, _, answer) = app.post(path, &example(request)).await;
+        assert_eq!(status, StatusCode::OK, "{path}: {answer}");
+        assert_eq!(answer, example(response), "{path}");
+    }
+    let problem = example("Problem");
+    let mut refused = example("ObliqueRequest");
+    refused["velocity"]["normal"] = json!(1.0);
+    let (status, _, answer) = app.post("/v1/impacts/oblique", &refused).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(answer, problem);
+}

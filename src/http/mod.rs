@@ -51,37 +51,64 @@ pub const REQUEST_ID: &str = "x-request-id";
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
-    modifiers(&OptionalBearer),
     tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "fits", description = "Coefficients identified from measured impacts"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
 
-/// Declares the optional bearer token: required only when the service runs
-/// with `--api-key-file` (every route but /healthz).
-struct OptionalBearer;
+/// Declares the bearer token of a service run with `--api-key-file`: the
+/// scheme, and a requirement on every operation but `/healthz` (the routes the
+/// `require_api_key` middleware guards). Applied only to the document served
+/// by such a service; without a key the document declares no security.
+struct BearerRequired;
 
-impl utoipa::Modify for OptionalBearer {
+impl utoipa::Modify for BearerRequired {
     fn modify(&self, doc: &mut OpenApiDocument) {
         use utoipa::openapi::security::{HttpAuthScheme, HttpBuilder, SecurityRequirement, SecurityScheme};
-        if let Some(components) = doc.components.as_mut() {
-            components.add_security_scheme(
+        doc.components
+            .get_or_insert_with(Default::default)
+            .add_security_scheme(
                 "bearer",
                 SecurityScheme::Http(
                     HttpBuilder::new()
                         .scheme(HttpAuthScheme::Bearer)
                         .description(Some(
-                            "Only when the service runs with --api-key-file: `Authorization: Bearer <key>`",
+                            "The service's API key (from --api-key-file): `Authorization: Bearer <key>`",
                         ))
                         .build(),
                 ),
             );
+        for (path, item) in doc.paths.paths.iter_mut() {
+            if path == HEALTHZ {
+                continue;
+            }
+            for operation in operations_mut(item) {
+                operation.security = Some(vec![SecurityRequirement::new("bearer", Vec::<String>::new())]);
+            }
         }
-        doc.security = Some(vec![
-            SecurityRequirement::default(),
-            SecurityRequirement::new("bearer", Vec::<String>::new()),
-        ]);
     }
 }
+
+/// The operations of a path item.
+fn operations_mut(
+    item: &mut utoipa::openapi::PathItem,
+) -> impl Iterator<Item = &mut utoipa::openapi::path::Operation> {
+    [
+        &mut item.get,
+        &mut item.put,
+        &mut item.post,
+        &mut item.delete,
+        &mut item.options,
+        &mut item.head,
+        &mut item.patch,
+        &mut item.trace,
+        &mut item.query,
+    ]
+    .into_iter()
+    .filter_map(Option::as_mut)
+}
+
+/// The liveness route, open even when the service has an API key.
+const HEALTHZ: &str = "/healthz";
 
 /// Liveness answer.
 #[derive(Serialize, ToSchema)]
@@ -108,11 +135,23 @@ fn routes() -> OpenApiRouter {
         .routes(routes!(healthz))
 }
 
-/// The OpenAPI 3.1 document generated from the code.
+/// The OpenAPI 3.1 document generated from the code, for a service without
+/// an API key (no security); [`openapi_for`] gives the one a service serves.
 pub fn openapi() -> OpenApiDocument {
     let mut doc = routes().into_openapi();
     doc.info.version = env!("CARGO_PKG_VERSION").to_owned();
     doc.info.license = Some(utoipa::openapi::License::new(env!("CARGO_PKG_LICENSE")));
+    doc
+}
+
+/// The OpenAPI document a service with `config` serves at `/openapi.json`:
+/// with an API key, the bearer scheme is declared and required by every
+/// operation but `/healthz`.
+pub fn openapi_for(config: &ServiceConfig) -> OpenApiDocument {
+    let mut doc = openapi();
+    if config.api_key.is_some() {
+        utoipa::Modify::modify(&BearerRequired, &mut doc);
+    }
     doc
 }
 
@@ -127,7 +166,7 @@ pub fn openapi_json() -> String {
 pub fn app(config: &ServiceConfig) -> Router {
     let (router, _) = routes().split_for_parts();
     with_middleware(
-        router.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi())),
+        router.merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config))),
         config,
     )
 }
@@ -205,7 +244,7 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
 
 /// Refuses every request but `GET /healthz` without `Authorization: Bearer <key>` (401).
 async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    if request.uri().path() == "/healthz" {
+    if request.uri().path() == HEALTHZ {
         return next.run(request).await;
     }
     let token = request
