@@ -196,15 +196,7 @@ pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
                     HeaderValue::from_static("nosniff"),
                 ))
                 .layer(middleware::from_fn(access_log))
-                .layer(CatchPanicLayer::custom(|_| {
-                    ApiError::new(
-                        StatusCode::INTERNAL_SERVER_ERROR,
-                        "internal",
-                        "Internal error",
-                        "the request failed",
-                    )
-                    .into_response()
-                }))
+                .layer(CatchPanicLayer::custom(panic_response))
                 .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
                 .load_shed()
                 .concurrency_limit(config.concurrency_limit),
@@ -339,14 +331,46 @@ async fn access_log(request: Request, next: Next) -> Response {
         .unwrap_or("-")
         .to_owned();
     let response = next.run(request).await;
-    tracing::info!(
-        request_id = %id,
-        method = %method,
-        path = %path,
-        status = response.status().as_u16(),
-        latency_us = start.elapsed().as_micros() as u64,
-        "request"
-    );
+    let status = response.status();
+    let latency_us = start.elapsed().as_micros() as u64;
+    // A server-side failure is logged at error level (warn for load shedding,
+    // which the client is told to retry), with the panic message if any; the
+    // request id ties it to the answer the client saw.
+    if status == StatusCode::SERVICE_UNAVAILABLE {
+        tracing::warn!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
+    } else if status.is_server_error() {
+        let panic = response
+            .extensions()
+            .get::<PanicMessage>()
+            .map_or("", |p| p.0.as_str());
+        tracing::error!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, panic, "request");
+    } else {
+        tracing::info!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
+    }
+    response
+}
+
+/// The message of a handler's panic, carried on its 500 answer to the access log.
+#[derive(Clone)]
+struct PanicMessage(String);
+
+/// The 500 problem for a handler that panicked.
+fn panic_response(panic: Box<dyn std::any::Any + Send + 'static>) -> Response {
+    let message = if let Some(text) = panic.downcast_ref::<&str>() {
+        (*text).to_owned()
+    } else if let Some(text) = panic.downcast_ref::<String>() {
+        text.clone()
+    } else {
+        "a non-text panic payload".to_owned()
+    };
+    let mut response = ApiError::new(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        "internal",
+        "Internal error",
+        "the request failed",
+    )
+    .into_response();
+    response.extensions_mut().insert(PanicMessage(message));
     response
 }
 
