@@ -554,3 +554,208 @@ async fn precision_is_chosen_echoed_and_exact_over_http() {
         Some("/precision"),
     );
 }
+
+/// A number beyond a double's range (`1e999`) is well-formed JSON with a value
+/// the schema cannot take: a 422 naming the member, like any other bad number,
+/// in a request and in a sweep's `base` or axis values; JSON broken after it
+/// is still a 400.
+#[tokio::test]
+async fn numbers_beyond_a_double_are_422_problems_naming_the_member() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let oblique = maw_disc(0.4).to_string();
+    let cases = [
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"mass\":1.0", "\"mass\":1e999", 1),
+            "/body/mass",
+        ),
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"normal\":-1.0", "\"normal\":-1e999", 1),
+            "/velocity/normal",
+        ),
+        (
+            "/v1/impacts/oblique",
+            oblique.replacen("\"friction\":0.123", "\"friction\":123e400", 1),
+            "/friction",
+        ),
+        (
+            "/v1/sweeps",
+            format!(
+                r#"{{"case": "oblique", "base": {}, "axes": [{{"path": "/velocity/tangential", "values": [0.4]}}]}}"#,
+                oblique.replacen("\"mass\":1.0", "\"mass\":1e999", 1)
+            ),
+            "/base/body/mass",
+        ),
+        (
+            "/v1/sweeps",
+            format!(
+                r#"{{"case": "oblique", "base": {oblique}, "axes": [{{"path": "/velocity/tangential", "values": [0.4, 1e999]}}]}}"#
+            ),
+            "/axes/0/values/1",
+        ),
+    ];
+    for (path, body, pointer) in cases {
+        assert!(body.contains("e999") || body.contains("e400"), "{body}");
+        let (status, ct, problem) = app
+            .post_raw(path, Some("application/json"), body.into_bytes())
+            .await;
+        assert_problem(
+            status,
+            &ct,
+            &problem,
+            StatusCode::UNPROCESSABLE_ENTITY,
+            Some(pointer),
+        );
+        let detail = problem["detail"].as_str().unwrap();
+        assert!(detail.starts_with("number out of range"), "{problem}");
+        assert!(!detail.contains("line"), "{problem}");
+    }
+    // Malformed JSON after the huge number is still malformed.
+    let broken = br#"{"body": {"mass": 1e999, "inertia": 1.0}, "contact": }"#.to_vec();
+    let (status, ct, problem) = app
+        .post_raw("/v1/impacts/oblique", Some("application/json"), broken)
+        .await;
+    assert_problem(status, &ct, &problem, StatusCode::BAD_REQUEST, None);
+}
+
+/// A wrong type on a number says "expected a number", not Rust's "f64"; on a
+/// count, "expected a non-negative whole number".
+#[tokio::test]
+async fn wrong_types_are_described_in_plain_words() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let mut request = maw_disc(0.4);
+    request["body"]["mass"] = json!("x");
+    let (status, _, problem) = app.post("/v1/impacts/oblique", &request).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/body/mass");
+    assert_eq!(problem["detail"], "invalid type: string \"x\", expected a number");
+    // An optional number, and a number in a sweep's base (parsed on its own).
+    let mut request = maw_disc(0.4);
+    request["friction"] = json!(true);
+    let (_, _, problem) = app.post("/v1/impacts/oblique", &request).await;
+    assert_eq!(problem["pointer"], "/friction");
+    assert_eq!(
+        problem["detail"],
+        "invalid type: boolean `true`, expected a number"
+    );
+    let mut base = maw_disc(0.4);
+    base["velocity"]["normal"] = json!(null);
+    let sweep = json!({"case": "oblique", "base": base,
+                       "axes": [{"path": "/velocity/tangential", "values": [0.4]}]});
+    let (status, _, problem) = app.post("/v1/sweeps", &sweep).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/base/velocity/normal");
+    assert_eq!(problem["detail"], "invalid type: null, expected a number");
+    let sweep = json!({"case": "oblique", "base": maw_disc(0.4),
+                       "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 1.0, "count": -3}}]});
+    let (status, _, problem) = app.post("/v1/sweeps", &sweep).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/axes/0/linspace/count");
+    assert_eq!(
+        problem["detail"],
+        "invalid value: integer `-3`, expected a non-negative whole number"
+    );
+}
+
+/// The served document declares the bearer token only when the service has an
+/// API key, and then on every operation but `/healthz`.
+#[tokio::test]
+async fn the_served_openapi_document_declares_security_only_with_an_api_key() {
+    fn security_members(v: &Value, at: &str, found: &mut Vec<String>) {
+        match v {
+            Value::Object(map) => {
+                for (k, x) in map {
+                    let here = format!("{at}/{}", k.replace('~', "~0").replace('/', "~1"));
+                    if k == "security" || k == "securitySchemes" {
+                        found.push(here.clone());
+                    }
+                    security_members(x, &here, found);
+                }
+            }
+            Value::Array(items) => {
+                for (i, x) in items.iter().enumerate() {
+                    security_members(x, &format!("{at}/{i}"), found);
+                }
+            }
+            _ => {}
+        }
+    }
+    let open = spawn_app(ServiceConfig::default()).await;
+    let doc: Value = open
+        .client
+        .get(format!("{}/openapi.json", open.base))
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    let mut found = Vec::new();
+    security_members(&doc, "", &mut found);
+    assert!(found.is_empty(), "no key, yet security at {found:?}");
+
+    let keyed = spawn_app(ServiceConfig {
+        api_key: Some("s3cret-token".into()),
+        ..ServiceConfig::default()
+    })
+    .await;
+    let doc: Value = keyed
+        .client
+        .get(format!("{}/openapi.json", keyed.base))
+        .bearer_auth("s3cret-token")
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    let scheme = &doc["components"]["securitySchemes"]["bearer"];
+    assert_eq!(scheme["type"], "http", "{scheme}");
+    assert_eq!(scheme["scheme"], "bearer", "{scheme}");
+    assert!(doc.get("security").is_none(), "no document-wide requirement");
+    let mut operations = 0;
+    for (path, item) in doc["paths"].as_object().unwrap() {
+        for (method, operation) in item.as_object().unwrap() {
+            operations += 1;
+            if path == "/healthz" {
+                assert!(operation.get("security").is_none(), "{method} {path}");
+            } else {
+                assert_eq!(operation["security"], json!([{"bearer": []}]), "{method} {path}");
+            }
+        }
+    }
+    assert!(operations >= 8, "{operations}");
+}
+
+/// The documented examples are real: the planar answer's example is the
+/// server's answer to the oblique request example, the torsional one to the
+/// torsional request example, and the Problem example is a refusal the server
+/// gives (the oblique example made to recede).
+#[tokio::test]
+async fn documented_examples_are_the_servers_real_answers() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let doc: Value = serde_json::from_str(&openapi_json()).unwrap();
+    let schema = |name: &str| doc["components"]["schemas"][name].clone();
+    let example = |name: &str| {
+        let s = schema(name);
+        s.get("example")
+            .cloned()
+            .or_else(|| s["examples"].get(0).cloned())
+            .unwrap_or_else(|| panic!("{name} has no example"))
+    };
+    for (path, request, response) in [
+        ("/v1/impacts/oblique", "ObliqueRequest", "PlanarResponse"),
+        ("/v1/impacts/torsional", "TorsionalRequest", "TorsionalResponse"),
+    ] {
+        let (status, _, answer) = app.post(path, &example(request)).await;
+        assert_eq!(status, StatusCode::OK, "{path}: {answer}");
+        assert_eq!(answer, example(response), "{path}");
+    }
+    let problem = example("Problem");
+    let mut refused = example("ObliqueRequest");
+    refused["velocity"]["normal"] = json!(1.0);
+    let (status, _, answer) = app.post("/v1/impacts/oblique", &refused).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(answer, problem);
+}

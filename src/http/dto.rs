@@ -208,6 +208,28 @@ impl From<Regime> for RegimeDto {
 
 /// The outcome of a planar impact.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+// The server's answer to the oblique request example (the Maw disc, sticking).
+#[schema(example = json!({
+    "final_velocity": {"normal": 0.93, "tangential": 0.2666666666666667, "angular": 5.333333333333334},
+    "contact_velocity": {
+        "initial": {"normal": -1.0, "tangential": 0.4},
+        "final": {"normal": 0.93, "tangential": 0.0}
+    },
+    "impulse": {"normal": 1.9300000000000002, "tangential": -0.1333333333333333},
+    "impulse_ratio": -0.06908462867012088,
+    "critical_impulse_ratio": -0.06908462867012088,
+    "restitution": 0.93,
+    "kinetic_restitution": 0.93,
+    "regime": "sticking",
+    "energy": {
+        "initial": 0.5800000000000001,
+        "final": 0.48578333333333346,
+        "loss": 0.09421666666666662,
+        "max_loss": 0.5266666666666666,
+        "normalized_loss": 0.17889240506329107
+    },
+    "precision": "fast"
+}))]
 pub struct PlanarResponse {
     /// Final velocities (V_n, V_t, Ω).
     pub final_velocity: PlanarVelocityOut,
@@ -314,6 +336,15 @@ pub enum TorsionalRegimeDto {
 
 /// The outcome of a torsional impact.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+// The server's answer to the torsional request example (sliding).
+#[schema(example = json!({
+    "final_velocity": {"normal": 2.0999999999999996, "spin": 13.34375},
+    "impulse": {"normal": 3.0599999999999996, "torsional": -0.023004},
+    "regime": "sliding",
+    "switch_spin": 2.65625,
+    "energy": {"initial": 0.6911999999999999, "final": 0.3076801875, "loss": 0.3835198125},
+    "precision": "fast"
+}))]
 pub struct TorsionalResponse {
     /// Final normal velocity and spin.
     pub final_velocity: TorsionalVelocityOut,

@@ -1,7 +1,7 @@
 //! `ApiJson<T>`: the JSON body extractor whose every rejection is problem+json:
 //! 415 for a missing or wrong content type, 413 for a body over the limit,
 //! 400 for malformed JSON, 422 (with the member's JSON pointer) for a wrong
-//! type, a missing or an unknown field.
+//! type, a missing or an unknown field, or a number too large for a double.
 
 use axum::body::Bytes;
 use axum::extract::{FromRequest, Request};
@@ -86,10 +86,27 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
                 }
                 schema_mismatch("", error.path(), inner)
             }
+            // serde_json counts a number beyond f64's range (`1e999`) as a syntax
+            // error, but it is well-formed JSON with a value the schema cannot take.
+            serde_json::error::Category::Syntax if is_out_of_range(inner) => {
+                // Skipping values does not convert numbers: this checks the rest of the syntax.
+                if let Err(syntax) = serde_json::from_slice::<serde::de::IgnoredAny>(bytes) {
+                    return malformed(&syntax);
+                }
+                schema_mismatch("", error.path(), inner)
+            }
             _ => malformed(inner),
         }
     })
 }
+
+/// serde_json's error for a number whose magnitude does not fit its type.
+fn is_out_of_range(error: &serde_json::Error) -> bool {
+    error.to_string().starts_with(OUT_OF_RANGE)
+}
+
+/// serde_json's message for a number too large for an f64.
+const OUT_OF_RANGE: &str = "number out of range";
 
 /// Deserializes a JSON value that sits at `prefix` in the request body (a
 /// member holding a request of its own); a mismatch is a 422 naming the member
@@ -112,9 +129,30 @@ fn schema_mismatch(prefix: &str, path: &serde_path_to_error::Path, inner: &serde
         StatusCode::UNPROCESSABLE_ENTITY,
         "invalid-body",
         "Request body does not match the schema",
-        strip_position(&message),
+        plain_words(&strip_position(&message)),
     )
     .at(pointer)
+}
+
+/// Rewords serde's Rust type names for the client: a wrong type on an `f64`
+/// member says "expected a number", not "expected f64"; an integer member
+/// says "expected a whole number" (non-negative for unsigned types); a number
+/// beyond a double's range says so.
+fn plain_words(message: &str) -> String {
+    if message.starts_with(OUT_OF_RANGE) {
+        return format!("{OUT_OF_RANGE}: the number does not fit a double (magnitude above 1.8e308)");
+    }
+    const EXPECTED: &str = ", expected ";
+    let Some(at) = message.rfind(EXPECTED) else {
+        return message.to_owned();
+    };
+    let wording = match &message[at + EXPECTED.len()..] {
+        "f64" | "f32" => "a number",
+        "u8" | "u16" | "u32" | "u64" | "u128" | "usize" => "a non-negative whole number",
+        "i8" | "i16" | "i32" | "i64" | "i128" | "isize" => "a whole number",
+        _ => return message.to_owned(),
+    };
+    format!("{}{EXPECTED}{wording}", &message[..at])
 }
 
 fn malformed(error: &serde_json::Error) -> ApiError {

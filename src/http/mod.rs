@@ -50,37 +50,64 @@ pub const REQUEST_ID: &str = "x-request-id";
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
-    modifiers(&OptionalBearer),
     tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "fits", description = "Coefficients identified from measured impacts"), (name = "service", description = "Liveness"))
 )]
 struct ApiDoc;
 
-/// Declares the optional bearer token: required only when the service runs
-/// with `--api-key-file` (every route but /healthz).
-struct OptionalBearer;
+/// Declares the bearer token of a service run with `--api-key-file`: the
+/// scheme, and a requirement on every operation but `/healthz` (the routes the
+/// `require_api_key` middleware guards). Applied only to the document served
+/// by such a service; without a key the document declares no security.
+struct BearerRequired;
 
-impl utoipa::Modify for OptionalBearer {
+impl utoipa::Modify for BearerRequired {
     fn modify(&self, doc: &mut OpenApiDocument) {
         use utoipa::openapi::security::{HttpAuthScheme, HttpBuilder, SecurityRequirement, SecurityScheme};
-        if let Some(components) = doc.components.as_mut() {
-            components.add_security_scheme(
+        doc.components
+            .get_or_insert_with(Default::default)
+            .add_security_scheme(
                 "bearer",
                 SecurityScheme::Http(
                     HttpBuilder::new()
                         .scheme(HttpAuthScheme::Bearer)
                         .description(Some(
-                            "Only when the service runs with --api-key-file: `Authorization: Bearer <key>`",
+                            "The service's API key (from --api-key-file): `Authorization: Bearer <key>`",
                         ))
                         .build(),
                 ),
             );
+        for (path, item) in doc.paths.paths.iter_mut() {
+            if path == HEALTHZ {
+                continue;
+            }
+            for operation in operations_mut(item) {
+                operation.security = Some(vec![SecurityRequirement::new("bearer", Vec::<String>::new())]);
+            }
         }
-        doc.security = Some(vec![
-            SecurityRequirement::default(),
-            SecurityRequirement::new("bearer", Vec::<String>::new()),
-        ]);
     }
 }
+
+/// The operations of a path item.
+fn operations_mut(
+    item: &mut utoipa::openapi::PathItem,
+) -> impl Iterator<Item = &mut utoipa::openapi::path::Operation> {
+    [
+        &mut item.get,
+        &mut item.put,
+        &mut item.post,
+        &mut item.delete,
+        &mut item.options,
+        &mut item.head,
+        &mut item.patch,
+        &mut item.trace,
+        &mut item.query,
+    ]
+    .into_iter()
+    .filter_map(Option::as_mut)
+}
+
+/// The liveness route, open even when the service has an API key.
+const HEALTHZ: &str = "/healthz";
 
 /// Liveness answer.
 #[derive(Serialize, ToSchema)]
@@ -103,11 +130,23 @@ fn routes() -> OpenApiRouter {
         .routes(routes!(healthz))
 }
 
-/// The OpenAPI 3.1 document generated from the code.
+/// The OpenAPI 3.1 document generated from the code, for a service without
+/// an API key (no security); [`openapi_for`] gives the one a service serves.
 pub fn openapi() -> OpenApiDocument {
     let mut doc = routes().into_openapi();
     doc.info.version = env!("CARGO_PKG_VERSION").to_owned();
     doc.info.license = Some(utoipa::openapi::License::new(env!("CARGO_PKG_LICENSE")));
+    doc
+}
+
+/// The OpenAPI document a service with `config` serves at `/openapi.json`:
+/// with an API key, the bearer scheme is declared and required by every
+/// operation but `/healthz`.
+pub fn openapi_for(config: &ServiceConfig) -> OpenApiDocument {
+    let mut doc = openapi();
+    if config.api_key.is_some() {
+        utoipa::Modify::modify(&BearerRequired, &mut doc);
+    }
     doc
 }
 
@@ -136,7 +175,7 @@ pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let (router, _) = routes().split_for_parts();
     let router = router
         .layer(axum::Extension(state.streams))
-        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi()));
+        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)));
     with_middleware(router, config)
 }
 
@@ -165,15 +204,7 @@ pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
                     HeaderValue::from_static("nosniff"),
                 ))
                 .layer(middleware::from_fn(access_log))
-                .layer(CatchPanicLayer::custom(|_| {
-                    ApiError::new(
-                        StatusCode::INTERNAL_SERVER_ERROR,
-                        "internal",
-                        "Internal error",
-                        "the request failed",
-                    )
-                    .into_response()
-                }))
+                .layer(CatchPanicLayer::custom(panic_response))
                 .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
                 .load_shed()
                 .concurrency_limit(config.concurrency_limit),
@@ -213,7 +244,7 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
 
 /// Refuses every request but `GET /healthz` without `Authorization: Bearer <key>` (401).
 async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    if request.uri().path() == "/healthz" {
+    if request.uri().path() == HEALTHZ {
         return next.run(request).await;
     }
     let token = request
@@ -308,14 +339,46 @@ async fn access_log(request: Request, next: Next) -> Response {
         .unwrap_or("-")
         .to_owned();
     let response = next.run(request).await;
-    tracing::info!(
-        request_id = %id,
-        method = %method,
-        path = %path,
-        status = response.status().as_u16(),
-        latency_us = start.elapsed().as_micros() as u64,
-        "request"
-    );
+    let status = response.status();
+    let latency_us = start.elapsed().as_micros() as u64;
+    // A server-side failure is logged at error level (warn for load shedding,
+    // which the client is told to retry), with the panic message if any; the
+    // request id ties it to the answer the client saw.
+    if status == StatusCode::SERVICE_UNAVAILABLE {
+        tracing::warn!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
+    } else if status.is_server_error() {
+        let panic = response
+            .extensions()
+            .get::<PanicMessage>()
+            .map_or("", |p| p.0.as_str());
+        tracing::error!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, panic, "request");
+    } else {
+        tracing::info!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
+    }
+    response
+}
+
+/// The message of a handler's panic, carried on its 500 answer to the access log.
+#[derive(Clone)]
+struct PanicMessage(String);
+
+/// The 500 problem for a handler that panicked.
+fn panic_response(panic: Box<dyn std::any::Any + Send + 'static>) -> Response {
+    let message = if let Some(text) = panic.downcast_ref::<&str>() {
+        (*text).to_owned()
+    } else if let Some(text) = panic.downcast_ref::<String>() {
+        text.clone()
+    } else {
+        "a non-text panic payload".to_owned()
+    };
+    let mut response = ApiError::new(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        "internal",
+        "Internal error",
+        "the request failed",
+    )
+    .into_response();
+    response.extensions_mut().insert(PanicMessage(message));
     response
 }
 

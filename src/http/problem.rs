@@ -24,7 +24,14 @@ pub struct IntervalDto {
 
 /// An RFC 9457 problem details object.
 #[derive(Debug, Clone, Serialize, ToSchema)]
-#[schema(title = "Problem")]
+// The server's refusal of the oblique request example with a receding contact (v_n = 1).
+#[schema(title = "Problem", example = json!({
+    "type": "urn:restitution:problem:not-approaching",
+    "title": "Contact is not approaching",
+    "status": 422,
+    "detail": "the contact is not approaching the barrier: the normal contact velocity is 1, and an impact needs it below 0",
+    "pointer": "/velocity/normal"
+}))]
 pub struct Problem {
     /// A URI reference naming the kind of problem.
     #[serde(rename = "type")]
