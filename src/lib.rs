@@ -11,9 +11,9 @@
 //! - [`impact`]: the front door. An impact of one case ([`PlanarImpact`] with
 //!   its [`Law`], [`TorsionalImpact`]) and [`solve`]: validation, the fast
 //!   range check, the choice of arithmetic, escalation to exact;
-//! - [`model`]: the laws of the paper written once, over any arithmetic
+//! - `model` (`src/model/`): the laws of the paper written once, over any arithmetic
 //!   (Eqs 1–31, A-1…A-16);
-//! - [`arith`]: the arithmetics (plain f64 for `fast`; compensated,
+//! - `arith` (`src/arith/`): the arithmetics (plain f64 for `fast`; compensated,
 //!   double-double and exact fractions for `exact`);
 //!
 //! with the shared pieces in [`scene`] (frame, contact kinematics, `D(μ)`, the

@@ -280,6 +280,60 @@ async fn structural_errors_are_422_problems_naming_the_member() {
 }
 
 #[tokio::test]
+async fn an_axis_error_lists_the_inputs_the_base_law_reads_and_no_others() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    for (base_case, base, path, readable, unread) in [
+        ("tangential", maw_base(), "/impulse_ratio", "/tangential_restitution", "/impulse_ratio"),
+        (
+            "normal",
+            json!({"body": {"mass": 1.0}, "velocity": {"normal": -1.0}, "restitution": 0.5}),
+            "/velocity/angular",
+            "/velocity/tangential",
+            "/body/inertia",
+        ),
+        ("tangential", maw_base(), "/nowhere", "/friction", "/kinetic_restitution/value"),
+    ] {
+        let body = json!({"case": base_case, "base": base, "axes": [{"path": path, "values": [0.1]}]});
+        let (status, _, problem) = app.post("/v1/sweeps", &body).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+        assert_eq!(problem["pointer"], "/axes/0/path");
+        let detail = problem["detail"].as_str().unwrap();
+        let (_, offered) = detail.split_once("one of: ").expect("a list of the inputs");
+        let offered: Vec<&str> = offered.split(", ").collect();
+        assert!(offered.contains(&readable), "{detail}");
+        assert!(!offered.contains(&unread), "{detail}");
+    }
+}
+
+#[tokio::test]
+async fn an_exact_zero_is_written_as_zero_not_minus_zero() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    // μ_c = v_t / ((1 + e) v_n) with v_t = 0 and v_n < 0 is −0 in IEEE arithmetic.
+    let request = json!({"body": {"mass": 1.0}, "velocity": {"normal": -1.0, "tangential": 0.0}, "restitution": 0.5});
+    for precision in ["fast", "exact"] {
+        let mut request = request.clone();
+        request["precision"] = json!(precision);
+        let response = app
+            .client
+            .post(format!("{}/v1/impacts/normal", app.base))
+            .json(&request)
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(response.status(), StatusCode::OK);
+        let text = response.text().await.unwrap();
+        assert!(text.contains("\"critical_impulse_ratio\":0.0"), "{text}");
+        assert!(!text.contains("-0.0"), "{text}");
+    }
+    let sweep = json!({"case": "normal", "base": request,
+                       "axes": [{"path": "/restitution", "values": [0.0, 0.5, 1.0]}]});
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &sweep).await;
+    assert_eq!(status, StatusCode::OK);
+    let csv = String::from_utf8(bytes).unwrap();
+    assert!(csv.lines().count() == 4 && !csv.contains("-0"), "{csv}");
+}
+
+#[tokio::test]
 async fn a_sweep_of_a_trillion_points_is_refused_at_once() {
     let app = spawn_app(ServiceConfig::default()).await;
     let body = json!({

@@ -1,6 +1,6 @@
 //! Coefficient identification from measured impacts, one module per model:
-//! [`tangential`] (`e`, `f`, `e_t` of the bilinear tangential model, section 3)
-//! and [`torsional`] (`e`, `e_z`, `μ_z` of the torsional model, section 4).
+//! [`tangential`](mod@tangential) (`e`, `f`, `e_t` of the bilinear tangential model, section 3)
+//! and [`torsional`](mod@torsional) (`e`, `e_z`, `μ_z` of the torsional model, section 4).
 //! Fitted values are judged by the solver's own model: residuals and regimes
 //! are what [`crate::impact`] answers for the fitted coefficients.
 

@@ -1,6 +1,6 @@
 //! The front door of the solver: an impact of one case with its law and that
 //! law's coefficients, and [`solve`], which validates it, checks the fast
-//! range, evaluates the model ([`crate::model`]) in the chosen precision and
+//! range, evaluates the model (`src/model/`) in the chosen precision and
 //! escalates to exact arithmetic where the fast one cannot answer.
 //!
 //! - `fast` precision evaluates the model in plain `f64`. Inputs outside
@@ -11,7 +11,7 @@
 //!   the model's exact value for the given f64 inputs, and every regime
 //!   decision and refusal is the exact one. Adaptive precision in the manner
 //!   of Shewchuk's robust predicates: the model is evaluated in up to four
-//!   arithmetics ([`crate::arith`]), each dearer and more decisive than the
+//!   arithmetics (`src/arith/`), each dearer and more decisive than the
 //!   last (compensated f64 with a static bound; double-double with a tracked
 //!   bound; the same keeping exact operations exact; exact fractions). When
 //!   every sign the model decides and every output it rounds is certified, the
