@@ -5,10 +5,11 @@
 FROM rust:1.95-slim-bookworm AS build
 WORKDIR /src
 # Dependency layer: built from the manifests alone, cached until they change.
-# The manifest names the benches, so they come along; .cargo sets the CPU target.
+# The manifest names the benches and examples, so they come along; .cargo sets the CPU target.
 COPY Cargo.toml Cargo.lock ./
 COPY .cargo ./.cargo
 COPY benches ./benches
+COPY examples ./examples
 RUN mkdir -p src && echo "fn main() {}" > src/main.rs && echo "" > src/lib.rs \
     && cargo build --release --locked \
     && rm -rf src

@@ -283,7 +283,13 @@ async fn structural_errors_are_422_problems_naming_the_member() {
 async fn an_axis_error_lists_the_inputs_the_base_law_reads_and_no_others() {
     let app = spawn_app(ServiceConfig::default()).await;
     for (base_case, base, path, readable, unread) in [
-        ("tangential", maw_base(), "/impulse_ratio", "/tangential_restitution", "/impulse_ratio"),
+        (
+            "tangential",
+            maw_base(),
+            "/impulse_ratio",
+            "/tangential_restitution",
+            "/impulse_ratio",
+        ),
         (
             "normal",
             json!({"body": {"mass": 1.0}, "velocity": {"normal": -1.0}, "restitution": 0.5}),
@@ -291,7 +297,13 @@ async fn an_axis_error_lists_the_inputs_the_base_law_reads_and_no_others() {
             "/velocity/tangential",
             "/body/inertia",
         ),
-        ("tangential", maw_base(), "/nowhere", "/friction", "/kinetic_restitution/value"),
+        (
+            "tangential",
+            maw_base(),
+            "/nowhere",
+            "/friction",
+            "/kinetic_restitution/value",
+        ),
     ] {
         let body = json!({"case": base_case, "base": base, "axes": [{"path": path, "values": [0.1]}]});
         let (status, _, problem) = app.post("/v1/sweeps", &body).await;
@@ -309,7 +321,8 @@ async fn an_axis_error_lists_the_inputs_the_base_law_reads_and_no_others() {
 async fn an_exact_zero_is_written_as_zero_not_minus_zero() {
     let app = spawn_app(ServiceConfig::default()).await;
     // μ_c = v_t / ((1 + e) v_n) with v_t = 0 and v_n < 0 is −0 in IEEE arithmetic.
-    let request = json!({"body": {"mass": 1.0}, "velocity": {"normal": -1.0, "tangential": 0.0}, "restitution": 0.5});
+    let request =
+        json!({"body": {"mass": 1.0}, "velocity": {"normal": -1.0, "tangential": 0.0}, "restitution": 0.5});
     for precision in ["fast", "exact"] {
         let mut request = request.clone();
         request["precision"] = json!(precision);
