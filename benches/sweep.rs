@@ -13,33 +13,14 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
-    Contact, Input, Law, Output, Outputs, PlanarBody, PlanarImpact, PlanarVelocity, Precision,
+    Case, Contact, Input, Law, Output, Outputs, PlanarBody, PlanarImpact, PlanarVelocity, Precision,
     TorsionalImpact, solve,
 };
 
 const POINTS: u64 = 200_000;
 
-const ALL: [Output; 19] = [
-    Output::FinalNormalVelocity,
-    Output::FinalTangentialVelocity,
-    Output::FinalAngularVelocity,
-    Output::InitialNormalContactVelocity,
-    Output::InitialTangentialContactVelocity,
-    Output::FinalNormalContactVelocity,
-    Output::FinalTangentialContactVelocity,
-    Output::NormalImpulse,
-    Output::TangentialImpulse,
-    Output::ImpulseRatio,
-    Output::CriticalImpulseRatio,
-    Output::Restitution,
-    Output::KineticRestitution,
-    Output::Regime,
-    Output::InitialEnergy,
-    Output::FinalEnergy,
-    Output::EnergyLoss,
-    Output::MaxEnergyLoss,
-    Output::NormalizedEnergyLoss,
-];
+/// Every planar output.
+const ALL: &[Output] = PlanarImpact::OUTPUTS;
 
 /// A non-central lamina (d_c ≠ 0) so that no special path applies.
 fn base() -> PlanarImpact {
@@ -150,7 +131,7 @@ fn single_core(c: &mut Criterion) {
     let mut group = c.benchmark_group("sweep_oblique_one_core");
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);
-    let all = sweep(Input::TangentialVelocity, &ALL, POINTS);
+    let all = sweep(Input::TangentialVelocity, ALL, POINTS);
     let one = sweep(
         Input::TangentialVelocity,
         &[Output::FinalTangentialContactVelocity],
@@ -180,7 +161,7 @@ fn all_cores(c: &mut Criterion) {
     group.throughput(Throughput::Elements(points));
     group.sample_size(10);
     for (name, columns) in [
-        ("all_outputs", &ALL[..]),
+        ("all_outputs", ALL),
         ("one_output", &[Output::FinalTangentialContactVelocity][..]),
     ] {
         let s = sweep(Input::TangentialVelocity, columns, points);
@@ -219,17 +200,7 @@ fn torsional_one_core(c: &mut Criterion) {
     let mut group = c.benchmark_group("sweep_torsional_one_core");
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);
-    let columns = vec![
-        Output::FinalNormalVelocity,
-        Output::FinalSpin,
-        Output::NormalImpulse,
-        Output::TorsionalImpulse,
-        Output::Regime,
-        Output::SwitchSpin,
-        Output::InitialEnergy,
-        Output::FinalEnergy,
-        Output::EnergyLoss,
-    ];
+    let columns = TorsionalImpact::OUTPUTS.to_vec();
     let axes = vec![Axis {
         param: Input::Spin,
         values: AxisValues::Linspace {

@@ -29,6 +29,9 @@ use restitution::{
     TorsionalImpact, solve,
 };
 
+#[path = "../tests/common/rng.rs"]
+mod rng;
+use rng::Rng;
 #[path = "../tests/common/linear.rs"]
 mod linear;
 
@@ -75,28 +78,6 @@ impl PlanarPoint {
     }
 }
 
-/// SplitMix64, so the report is reproducible.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn log(&mut self, lo: f64, hi: f64) -> f64 {
-        10f64.powf(self.range(lo, hi))
-    }
-    fn sign(&mut self) -> f64 {
-        if self.next() < 0.5 { -1.0 } else { 1.0 }
-    }
-}
-
 /// Grid steps between `x` and the correctly rounded `reference`.
 fn steps(x: f64, reference: f64) -> f64 {
     if x == reference {
@@ -135,36 +116,44 @@ impl Set {
 /// A planar input: the law and all inputs.
 fn planar_point(rng: &mut Rng, set: Set, law: Kind) -> PlanarPoint {
     let (mass, length, speed) = match set {
-        Set::Typical => (rng.log(-1.0, 1.0), rng.log(-1.0, 0.0), rng.log(-1.0, 1.0)),
-        Set::Stress => match (rng.next() * 3.0) as u32 {
+        Set::Typical => (
+            rng.log_uniform(-1.0, 1.0),
+            rng.log_uniform(-1.0, 0.0),
+            rng.log_uniform(-1.0, 1.0),
+        ),
+        Set::Stress => match (rng.unit() * 3.0) as u32 {
             0 => (
-                rng.log(-300.0, 300.0),
-                rng.log(-150.0, 150.0),
-                rng.log(-150.0, 150.0),
+                rng.log_uniform(-300.0, 300.0),
+                rng.log_uniform(-150.0, 150.0),
+                rng.log_uniform(-150.0, 150.0),
             ),
-            1 => (rng.log(-1.0, 1.0), 1.0, rng.log(-15.0, -3.0)),
-            _ => (rng.log(-100.0, 100.0), rng.log(-50.0, 50.0), rng.log(-50.0, 50.0)),
+            1 => (rng.log_uniform(-1.0, 1.0), 1.0, rng.log_uniform(-15.0, -3.0)),
+            _ => (
+                rng.log_uniform(-100.0, 100.0),
+                rng.log_uniform(-50.0, 50.0),
+                rng.log_uniform(-50.0, 50.0),
+            ),
         },
     };
-    let k = length * rng.log(-1.0, 0.5);
-    let dc = if rng.next() < 0.3 {
+    let k = length * rng.log_uniform(-1.0, 0.5);
+    let dc = if rng.unit() < 0.3 {
         0.0
     } else {
         length * rng.range(-2.0, 2.0)
     };
     let dd = length * rng.range(-2.0, 2.0);
     let w = speed / length * rng.range(-3.0, 3.0);
-    let grazing = set == Set::Stress && rng.next() < 0.3;
+    let grazing = set == Set::Stress && rng.unit() < 0.3;
     let vcn = -speed
         * if grazing {
-            rng.log(-15.0, -6.0)
+            rng.log_uniform(-15.0, -6.0)
         } else {
             rng.range(0.05, 2.0)
         };
-    let e = if set == Set::Stress && rng.next() < 0.5 {
-        [0.0, 1.0, 1.0 - 1e-12][(rng.next() * 3.0) as usize]
+    let e = if set == Set::Stress && rng.unit() < 0.5 {
+        [0.0, 1.0, 1.0 - 1e-12][(rng.unit() * 3.0) as usize]
     } else {
-        rng.next()
+        rng.unit()
     };
     let mut p = PlanarPoint {
         mass,
@@ -183,7 +172,7 @@ fn planar_point(rng: &mut Rng, set: Set, law: Kind) -> PlanarPoint {
         impulse_ratio: rng.range(-0.3, 0.3),
         tangential_restitution: rng.range(-1.0, 1.0),
     };
-    if set == Set::Stress && rng.next() < 0.3 {
+    if set == Set::Stress && rng.unit() < 0.3 {
         // f or μ at, or one ulp from, the capped ratio (μ_c for Coulomb).
         let probe = PlanarPoint {
             friction: f64::MAX,
@@ -191,7 +180,7 @@ fn planar_point(rng: &mut Rng, set: Set, law: Kind) -> PlanarPoint {
         };
         if let Ok(o) = solve(&probe.impact(law), Outputs::MINIMAL, Precision::Exact) {
             let at = o.impulse_ratio;
-            let near = [at, at.next_up(), at.next_down()][(rng.next() * 3.0) as usize];
+            let near = [at, at.next_up(), at.next_down()][(rng.unit() * 3.0) as usize];
             p.friction = near.abs();
             p.impulse_ratio = near;
         }
@@ -201,16 +190,16 @@ fn planar_point(rng: &mut Rng, set: Set, law: Kind) -> PlanarPoint {
 
 fn torsional_impact(rng: &mut Rng, set: Set) -> TorsionalImpact {
     let span = if set == Set::Typical { 1.0 } else { 250.0 };
-    let m = rng.log(-span, span);
-    let i_n = rng.log(-span, span);
-    let vn = -rng.log(-span, span);
-    let rho = rng.log(-span.min(100.0), span.min(100.0));
-    let (e, ez, mu_z) = (rng.next(), rng.next(), rng.next());
+    let m = rng.log_uniform(-span, span);
+    let i_n = rng.log_uniform(-span, span);
+    let vn = -rng.log_uniform(-span, span);
+    let rho = rng.log_uniform(-span.min(100.0), span.min(100.0));
+    let (e, ez, mu_z) = (rng.unit(), rng.unit(), rng.unit());
     let switch = mu_z * rho * (1.0 + e) * -vn * m / i_n;
-    let spin = if set == Set::Stress && rng.next() < 0.5 && switch.is_finite() {
-        [switch, switch.next_up(), -switch.next_down()][(rng.next() * 3.0) as usize]
+    let spin = if set == Set::Stress && rng.unit() < 0.5 && switch.is_finite() {
+        [switch, switch.next_up(), -switch.next_down()][(rng.unit() * 3.0) as usize]
     } else {
-        rng.sign() * rng.log(-span, span)
+        rng.sign() * rng.log_uniform(-span, span)
     };
     TorsionalImpact {
         mass: m,
@@ -322,7 +311,7 @@ fn velocity_error(p: &PlanarPoint, got: &PlanarVelocity, reference: &PlanarVeloc
 }
 
 fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec<Row>) {
-    let mut rng = Rng(0x5EED ^ (n as u64) ^ (law as u64) << 8 ^ (set as u64) << 16);
+    let mut rng = Rng::new(0x5EED ^ (n as u64) ^ (law as u64) << 8 ^ (set as u64) << 16);
     let inputs: Vec<(PlanarPoint, PlanarVelocity, Option<TangentialClosure>)> = (0..n)
         .filter_map(|_| {
             let p = planar_point(&mut rng, set, law);
@@ -398,7 +387,7 @@ fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec
 }
 
 fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
-    let mut rng = Rng(0x70E5 ^ (set as u64) << 16);
+    let mut rng = Rng::new(0x70E5 ^ (set as u64) << 16);
     let inputs: Vec<(TorsionalImpact, f64)> = (0..n)
         .filter_map(|_| {
             let impact = torsional_impact(&mut rng, set);

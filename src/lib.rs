@@ -38,6 +38,9 @@ pub mod outcome;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod quantity;
+#[cfg(test)]
+#[path = "../tests/common/rng.rs"]
+pub(crate) mod rng;
 pub mod scene;
 pub mod sweep;
 

@@ -261,13 +261,8 @@ mod tests {
     use crate::outcome::Outputs;
 
     fn scenes() -> impl Iterator<Item = PlanarScene> {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::rng::Rng::new(0x2545_f491_4f6c_dd1d);
+        let mut unit = move || rng.unit();
         (0..1000).map(move |_| {
             let k = 0.01 + unit();
             let contact = Contact {
@@ -292,12 +287,8 @@ mod tests {
                 assert!(interval.contains(0.0));
                 for bound in [interval.lower, interval.upper].into_iter().flatten() {
                     let inside = bound * (1.0 - 1e-9);
-                    let body = scene.body();
-                    let impact = PlanarImpact::rigid(
-                        body.mass(),
-                        body.inertia(),
-                        scene.contact(),
-                        scene.velocity(),
+                    let impact = PlanarImpact::in_scene(
+                        &scene,
                         Law::ImpulseRatio {
                             restitution: e,
                             impulse_ratio: inside,

@@ -323,6 +323,7 @@ impl Compensated {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::Rng;
     use num_rational::BigRational;
     use num_traits::Signed;
 
@@ -349,19 +350,9 @@ mod tests {
         );
     }
 
-    /// SplitMix64 in [0, 1).
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn draw(&mut self, span: f64) -> f64 {
-            (self.next() - 0.5) * 2f64.powf((self.next() - 0.5) * 2.0 * span)
-        }
+    /// A random value of magnitude up to `2^±span`, either sign.
+    fn draw(rng: &mut Rng, span: f64) -> f64 {
+        (rng.unit() - 0.5) * 2f64.powf((rng.unit() - 0.5) * 2.0 * span)
     }
 
     /// Random expression trees of sums, products and quotients, each node's
@@ -369,7 +360,7 @@ mod tests {
     /// reach the floor and overflow.
     #[test]
     fn the_invariants_hold_on_random_expression_trees() {
-        let mut rng = Rng(0x5eed);
+        let mut rng = Rng::new(0x5eed);
         let (mut certified, mut quotients) = (0, 0);
         for case in 0..4_000 {
             let span = [8.0, 120.0, 600.0][case % 3];
@@ -378,17 +369,17 @@ mod tests {
                     let x = if k == 0 && case % 7 == 0 {
                         0.0
                     } else {
-                        rng.draw(span)
+                        draw(&mut rng, span)
                     };
                     (Compensated::exact(x), of(x))
                 })
                 .collect();
             for step in 0..12 {
-                let i = (rng.next() * pool.len() as f64) as usize;
-                let j = (rng.next() * pool.len() as f64) as usize;
+                let i = (rng.unit() * pool.len() as f64) as usize;
+                let j = (rng.unit() * pool.len() as f64) as usize;
                 let (a, ea) = pool[i].clone();
                 let (b, eb) = pool[j].clone();
-                let (v, exact) = match (rng.next() * 4.0) as u32 {
+                let (v, exact) = match (rng.unit() * 4.0) as u32 {
                     0 => (a.add(&b), &ea + &eb),
                     1 => (a.sub(&b), &ea - &eb),
                     2 => (a.mul(&b), &ea * &eb),

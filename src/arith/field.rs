@@ -34,6 +34,14 @@ pub(crate) trait Field: Clone {
     }
     /// Division; the model only divides by values whose sign it has decided non-zero.
     fn div(&self, o: &Self) -> Self;
+    /// The quotient of two f64 inputs, `rounded` being their f64 quotient
+    /// already formed: `f64` takes it as it is (no second division), the exact
+    /// fields form the exact one.
+    #[inline(always)]
+    fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
+        let _ = rounded;
+        Self::of(num).div(&Self::of(den))
+    }
     fn neg(&self) -> Self;
     /// The sign of the exact value.
     fn sign(&self) -> Result<Ordering, Self::Undecided>;
@@ -113,6 +121,11 @@ impl Field for f64 {
     #[inline(always)]
     fn div(&self, o: &Self) -> Self {
         self / o
+    }
+    #[inline(always)]
+    fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
+        debug_assert_eq!(rounded.to_bits(), (num / den).to_bits());
+        rounded
     }
     #[inline(always)]
     fn neg(&self) -> Self {

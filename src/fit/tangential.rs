@@ -92,12 +92,8 @@ fn prepare(index: usize, o: &Observation) -> Result<Point, FitError> {
 
 /// The model's answer for a measured scene under fitted coefficients.
 fn predict(scene: &PlanarScene, e: f64, f: f64, et: f64) -> crate::error::Result<PlanarOutcome> {
-    let body = scene.body();
-    let impact = PlanarImpact::rigid(
-        body.mass(),
-        body.inertia(),
-        scene.contact(),
-        scene.velocity(),
+    let impact = PlanarImpact::in_scene(
+        scene,
         Law::TangentialRestitution {
             restitution: e,
             friction: f,
@@ -230,13 +226,8 @@ mod tests {
     fn synthetic(e: f64, f: f64, et: f64, noise: f64) -> Vec<Observation> {
         let body = Body::new(1.0, 0.00125).unwrap();
         let contact = Contact::central(0.05);
-        let mut state = 0x1234_5678_u64;
-        let mut jitter = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * noise
-        };
+        let mut rng = crate::rng::Rng::new(0x1234_5678);
+        let mut jitter = move || rng.range(-noise, noise);
         (0..40)
             .map(|i| {
                 let initial = PlanarVelocity {

@@ -111,6 +111,7 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     /// one it does not.
     fn input_mut(&mut self, input: Input) -> Option<&mut f64>;
     /// The value of an input this impact reads.
+    #[inline]
     fn input(&self, input: Input) -> Option<f64> {
         let mut copy = *self;
         copy.input_mut(input).map(|x| *x)
@@ -189,6 +190,7 @@ impl<C: Case> Solver<C> {
     }
 
     /// Solves `impact` (the base with other values of the swept inputs).
+    #[inline]
     pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
         let in_range = self.arithmetic == Arithmetic::Fast
             && self.fixed_in_range
@@ -219,6 +221,7 @@ fn all_in_fast_range<C: Case>(impact: &C, inputs: &[Input]) -> bool {
 /// Evaluates a validated impact: `model` is the model instantiated in each
 /// field. `Fast` answers in f64 when `in_range` and the f64 evaluation stays
 /// in range, else as `Exact`.
+#[inline(always)]
 pub(crate) fn evaluate<T>(
     arithmetic: Arithmetic,
     in_range: bool,
@@ -228,12 +231,19 @@ pub(crate) fn evaluate<T>(
         Arithmetic::Fast if in_range => fast_or_exact(&model),
         Arithmetic::Plain => fast_or_exact(&model),
         Arithmetic::Fast | Arithmetic::Exact => adaptive(&model),
-        Arithmetic::Rational => (decided(model.run::<Fraction>()), Stage::Rational),
+        Arithmetic::Rational => rational(&model),
     }
+}
+
+/// The model in exact fractions alone.
+#[inline(never)]
+fn rational<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
+    (decided(model.run::<Fraction>()), Stage::Rational)
 }
 
 /// The f64 answer, or the exact one where the f64 evaluation leaves the f64
 /// range (an output that overflows, a decision on an infinity or a NaN).
+#[inline(always)]
 fn fast_or_exact<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
     match model.run::<f64>() {
         Ok(v) => (Ok(v), Stage::Fast),
@@ -256,6 +266,7 @@ pub(crate) trait Model<T> {
 /// double-double tracking exact operations (decides ties and cancelled zeros
 /// formed without a quotient); and last in exact fractions, which decide
 /// everything: its undecided case is uninhabited.
+#[inline(never)]
 fn adaptive<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
     let settled = |result: Exact<Bounded, T>| match result {
         Ok(v) => Some(Ok(v)),

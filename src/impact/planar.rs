@@ -106,6 +106,7 @@ impl Law {
     }
 
     /// The slot of a coefficient this law reads.
+    #[inline]
     fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
         match (self, input) {
             (
@@ -205,6 +206,18 @@ impl PlanarImpact {
             velocity,
             law,
         }
+    }
+
+    /// The rigid body's impact in a scene already validated, under `law`.
+    pub fn in_scene(scene: &PlanarScene, law: Law) -> Self {
+        let body = scene.body();
+        PlanarImpact::rigid(
+            body.mass(),
+            body.inertia(),
+            scene.contact(),
+            scene.velocity(),
+            law,
+        )
     }
 
     /// A point mass's normal impact with restitution `e`.
@@ -342,6 +355,7 @@ impl Case for PlanarImpact {
         Output::NormalizedEnergyLoss,
     ];
 
+    #[inline]
     fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
         let velocity = &mut self.velocity;
         match (&mut self.body, input) {
@@ -412,6 +426,7 @@ impl Case for PlanarImpact {
         (rigid && !swept.iter().any(|i| SCENE.contains(i))).then(|| self.scene())
     }
 
+    #[inline]
     fn evaluate(
         &self,
         fixed: &Self::Fixed,

@@ -103,6 +103,7 @@ impl Case for TorsionalImpact {
         Output::EnergyLoss,
     ];
 
+    #[inline]
     fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
         Some(match input {
             Input::Mass => &mut self.mass,

@@ -87,7 +87,8 @@ impl<'a, N: Field> Scene<'a, N> {
         let w = N::of(fast.velocity.angular);
         let vcn = dc.mul_add(&w, &vn);
         let vct = dd.neg().mul_add(&w, &vt);
-        let k2 = inertia.div(&m);
+        // k² = I/m, already rounded by the scene: f64 does not divide again.
+        let k2 = N::quotient_of(fast.body.inertia(), fast.body.mass(), fast.k2);
         let dd2 = dd.mul(&dd);
         let k2_dc2 = dc.mul_add(&dc, &k2);
         Scene {

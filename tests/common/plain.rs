@@ -8,14 +8,7 @@ use restitution::{Law, Outputs, PlanarImpact, PlanarOutcome, PlanarScene, Result
 
 /// The rigid-body impact of a validated scene under `law`.
 pub fn impact(scene: &PlanarScene, law: Law) -> PlanarImpact {
-    let body = scene.body();
-    PlanarImpact::rigid(
-        body.mass(),
-        body.inertia(),
-        scene.contact(),
-        scene.velocity(),
-        law,
-    )
+    PlanarImpact::in_scene(scene, law)
 }
 
 /// `law` in `scene`, evaluated in plain f64.
