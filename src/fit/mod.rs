@@ -84,3 +84,17 @@ pub(crate) fn mean(values: &[f64]) -> Option<Estimate> {
         standard_error: se,
     })
 }
+
+/// `1 − SS_res/SS_tot` of the `observed` values given their `residuals`
+/// (`NaN` when the observations do not vary).
+fn r_squared(observed: impl Iterator<Item = f64> + Clone, residuals: &[f64]) -> f64 {
+    let n = residuals.len() as f64;
+    let mean = observed.clone().sum::<f64>() / n;
+    let ss_tot: f64 = observed.map(|y| (y - mean).powi(2)).sum();
+    let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
+    if ss_tot > 0.0 {
+        1.0 - ss_res / ss_tot
+    } else {
+        f64::NAN
+    }
+}

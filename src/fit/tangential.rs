@@ -192,20 +192,14 @@ pub fn tangential(observations: &[Observation]) -> Result<TangentialFit, FitErro
                 .map_or(f64::NAN, |o| p.final_vct - o.contact_velocity.r#final.tangential)
         })
         .collect();
-    let mean_vct = points.iter().map(|p| p.final_vct).sum::<f64>() / points.len() as f64;
-    let ss_tot: f64 = points.iter().map(|p| (p.final_vct - mean_vct).powi(2)).sum();
-    let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
+    let r_squared = super::r_squared(points.iter().map(|p| p.final_vct), &residuals);
     Ok(TangentialFit {
         restitution,
         friction,
         tangential_restitution,
         regimes,
         residuals,
-        r_squared: if ss_tot > 0.0 {
-            1.0 - ss_res / ss_tot
-        } else {
-            f64::NAN
-        },
+        r_squared,
         iterations,
     })
 }

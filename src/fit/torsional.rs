@@ -238,21 +238,14 @@ pub fn torsional(observations: &[TorsionalObservation]) -> Result<TorsionalFit, 
             "the observations' magnitudes overflow double precision",
         ));
     }
-    let n = observations.len() as f64;
-    let mean = observations.iter().map(|o| o.final_spin).sum::<f64>() / n;
-    let ss_tot: f64 = observations.iter().map(|o| (o.final_spin - mean).powi(2)).sum();
-    let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
+    let r_squared = super::r_squared(observations.iter().map(|o| o.final_spin), &residuals);
     Ok(TorsionalFit {
         restitution,
         torsional_restitution,
         torsional_friction,
         sliding,
         residuals,
-        r_squared: if ss_tot > 0.0 {
-            1.0 - ss_res / ss_tot
-        } else {
-            f64::NAN
-        },
+        r_squared,
     })
 }
 

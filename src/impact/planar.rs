@@ -381,13 +381,7 @@ impl Case for PlanarImpact {
     }
 
     fn output(o: &PlanarOutcome, output: Output) -> Value {
-        let energy = o.energy.unwrap_or(crate::outcome::PlanarEnergy {
-            initial: f64::NAN,
-            r#final: f64::NAN,
-            loss: f64::NAN,
-            max_loss: f64::NAN,
-            normalized_loss: f64::NAN,
-        });
+        let energy = o.energy;
         Value::Number(match output {
             Output::FinalNormalVelocity => o.final_velocity.normal,
             Output::FinalTangentialVelocity => o.final_velocity.tangential,
@@ -403,11 +397,11 @@ impl Case for PlanarImpact {
             Output::Restitution => o.restitution,
             Output::KineticRestitution => o.kinetic_restitution,
             Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy => energy.initial,
-            Output::FinalEnergy => energy.r#final,
-            Output::EnergyLoss => energy.loss,
-            Output::MaxEnergyLoss => energy.max_loss,
-            Output::NormalizedEnergyLoss => energy.normalized_loss,
+            Output::InitialEnergy => energy.map_or(f64::NAN, |e| e.initial),
+            Output::FinalEnergy => energy.map_or(f64::NAN, |e| e.r#final),
+            Output::EnergyLoss => energy.map_or(f64::NAN, |e| e.loss),
+            Output::MaxEnergyLoss => energy.map_or(f64::NAN, |e| e.max_loss),
+            Output::NormalizedEnergyLoss => energy.map_or(f64::NAN, |e| e.normalized_loss),
             Output::FinalSpin | Output::TorsionalImpulse | Output::SwitchSpin => f64::NAN,
         })
     }
