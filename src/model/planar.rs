@@ -347,11 +347,21 @@ impl<'a, N: Field> Scene<'a, N> {
             .into());
         }
         let w = self.w.add(&a.dw);
-        // V_n = V_cn − d_c Ω and V_t = V_ct + d_d Ω (the definitions of the contact
-        // velocities), equal to v_n + Δn and v_t + Δt: formed so, a zero of V_ct
-        // (sticking) or of d_d, d_c stays structural and is decided without a quotient.
-        let vn = self.dc.neg().mul_add(&w, &a.vcn);
-        let vt = self.dd.mul_add(&w, &a.vct);
+        // V_n = v_n + Δn and V_t = v_t + Δt, except where an offset is exactly 0:
+        // then V_n = V_cn (d_c = 0) and V_t = V_ct (d_d = 0) by the definitions of
+        // the contact velocities, so a sticking or plastic zero stays structural and
+        // is decided without a quotient. (Forming V_t = V_ct + d_d Ω always would
+        // cancel two terms d_d²/k² times larger than V_t when d_d² ≫ k².)
+        let vn = if self.central() {
+            a.vcn.clone()
+        } else {
+            self.vn.add(&a.dn)
+        };
+        let vt = if self.fast.contact.normal_offset == 0.0 {
+            a.vct.clone()
+        } else {
+            self.vt.add(&a.dt)
+        };
         let final_velocity = PlanarVelocity {
             normal: out(Output::FinalNormalVelocity, &vn)?,
             tangential: out(Output::FinalTangentialVelocity, &vt)?,
