@@ -185,53 +185,16 @@ impl PlanarScene {
     /// and `D` has its single root at `μ* = (k² + d_c²) / (d_c d_d)` where `Q < 0`,
     /// so the set is one interval (possibly unbounded on one side).
     pub fn admissible_interval(&self, e: f64) -> AdmissibleInterval {
-        let (dc, dd, k2) = (
-            self.contact.tangential_offset,
-            self.contact.normal_offset,
-            self.k2,
-        );
-        let s = -self.contact_velocity.normal;
-        let vct = self.contact_velocity.tangential;
-        let a = dc.mul_add(dc, k2);
-        let b = dc * dd;
-        let c = dd.mul_add(dd, k2);
-        let c0 = (1.0 - e) * s * a;
-        let c1 = 2.0 * (e * s).mul_add(b, -(vct * a));
-        let c2 = (2.0 * vct).mul_add(b, -((1.0 + e) * s * c));
-        let mut lower = f64::NEG_INFINITY;
-        let mut upper = f64::INFINITY;
-        if b != 0.0 {
-            let mu_star = a / b;
-            if mu_star > 0.0 {
-                upper = upper.min(mu_star);
-            } else {
-                lower = lower.max(mu_star);
-            }
-        }
-        if c2 != 0.0 {
-            let disc = c1.mul_add(c1, -4.0 * c2 * c0).max(0.0);
-            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
-            let (mut r1, mut r2) = if q == 0.0 { (0.0, 0.0) } else { (q / c2, c0 / q) };
-            if r1 > r2 {
-                std::mem::swap(&mut r1, &mut r2);
-            }
-            if c2 < 0.0 {
-                lower = lower.max(r1);
-                upper = upper.min(r2);
-            } else if r1 >= 0.0 {
-                upper = upper.min(r1);
-            } else {
-                lower = lower.max(r2);
-            }
-        } else if c1 > 0.0 {
-            lower = lower.max(-c0 / c1);
-        } else if c1 < 0.0 {
-            upper = upper.min(-c0 / c1);
-        }
-        AdmissibleInterval {
-            lower: Some(lower).filter(|x| x.is_finite()),
-            upper: Some(upper).filter(|x| x.is_finite()),
-        }
+        let Contact {
+            tangential_offset: dc,
+            normal_offset: dd,
+        } = self.contact;
+        admissible_interval(
+            [dc.mul_add(dc, self.k2), -(dc * dd), dd.mul_add(dd, self.k2)],
+            -self.contact_velocity.normal,
+            self.contact_velocity.tangential,
+            e,
+        )
     }
 
     /// The error for an answer with `D(μ) ≤ 0`.
@@ -241,6 +204,57 @@ impl PlanarScene {
             impulse_ratio: mu,
             d: self.d(mu),
         }
+    }
+}
+
+/// The interval of impulse ratios `μ` whose answer is physical in a contact
+/// space `W̃ = [[a, b], [b, c]]` (any positive scaling) with approach speed
+/// `s = −u_n` and slip `u_t`: `a + μ b > 0` and `T_L(μ) ≥ 0`. It always
+/// contains `μ = 0`.
+///
+/// `T_L(μ) (a + μ b)² · 2 / ((1 + e) s)` is, up to a positive factor, the quadratic
+/// `Q(μ) = (1 − e) s a − 2 μ [e s b + u_t a] + μ² [−2 u_t b − (1 + e) s c]`,
+/// and `a + μ b` has its single root at `μ* = −a / b` where `Q < 0`, so the set
+/// is one interval (possibly unbounded on one side).
+pub(crate) fn admissible_interval(w: [f64; 3], s: f64, vct: f64, e: f64) -> AdmissibleInterval {
+    let [a, wnt, c] = w;
+    let b = -wnt;
+    let c0 = (1.0 - e) * s * a;
+    let c1 = 2.0 * (e * s).mul_add(b, -(vct * a));
+    let c2 = (2.0 * vct).mul_add(b, -((1.0 + e) * s * c));
+    let mut lower = f64::NEG_INFINITY;
+    let mut upper = f64::INFINITY;
+    if b != 0.0 {
+        let mu_star = a / b;
+        if mu_star > 0.0 {
+            upper = upper.min(mu_star);
+        } else {
+            lower = lower.max(mu_star);
+        }
+    }
+    if c2 != 0.0 {
+        let disc = c1.mul_add(c1, -4.0 * c2 * c0).max(0.0);
+        let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+        let (mut r1, mut r2) = if q == 0.0 { (0.0, 0.0) } else { (q / c2, c0 / q) };
+        if r1 > r2 {
+            std::mem::swap(&mut r1, &mut r2);
+        }
+        if c2 < 0.0 {
+            lower = lower.max(r1);
+            upper = upper.min(r2);
+        } else if r1 >= 0.0 {
+            upper = upper.min(r1);
+        } else {
+            lower = lower.max(r2);
+        }
+    } else if c1 > 0.0 {
+        lower = lower.max(-c0 / c1);
+    } else if c1 < 0.0 {
+        upper = upper.min(-c0 / c1);
+    }
+    AdmissibleInterval {
+        lower: Some(lower).filter(|x| x.is_finite()),
+        upper: Some(upper).filter(|x| x.is_finite()),
     }
 }
 

@@ -15,6 +15,7 @@
 //! A physics change goes here, once; [`crate::impact`] validates the inputs
 //! and chooses the arithmetic.
 
+pub(crate) mod contact;
 pub(crate) mod planar;
 pub(crate) mod torsional;
 

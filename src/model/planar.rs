@@ -9,17 +9,15 @@
 //!
 //! give the contact-point velocity change `ΔV_c = W P` with
 //! `W = [[k² + d_c², −d_c d_d], [−d_c d_d, k² + d_d²]] / (m k²)` in `(n, t)` order.
-//! An answer is fixed in one of two ways: by a given impulse ratio `μ`
-//! ([`Scene::ratio_answer`], Eqs 5–7) or by a given final contact velocity
-//! ([`Scene::target_answer`], Eqs 1, 20 and 3 together). Every law is one or
-//! two of those with a decision between them. Impulses are carried per unit
-//! mass (`Δn = P_n / m`, `Δt = P_t / m`) and scaled by `k²` so that no `1/k²`
-//! can overflow.
+//! This is the contact space ([`ContactSpace`]) the laws of `contact.rs` are
+//! written in, scaled by `m k²`: `W̃ = [[k² + d_c², −d_c d_d], [−d_c d_d, k² + d_d²]]`.
+//! Impulses are carried per unit mass (`Δn = P_n / m`, `Δt = P_t / m`) and
+//! scaled by `k²` so that no `1/k²` can overflow.
 
 use std::cell::OnceCell;
-use std::cmp::Ordering;
 
-use super::{Exact, abs, half, out, sign};
+use super::contact::{Assembly, ContactSpace, critical_output, under_law};
+use super::{Exact, half, out};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::Law;
@@ -46,33 +44,12 @@ struct Scene<'a, N> {
     k2_dc2: N,
     /// `k² + d_d²`.
     k2_dd2: N,
-    /// `d_c d_d`.
-    cross: N,
+    /// `−d_c d_d`.
+    wnt: N,
     /// `S = k² + d_c² + d_d²`.
     total: N,
     /// `1 / S`, formed when first needed.
     inv_total: OnceCell<N>,
-}
-
-/// One answer in the field: per-unit-mass impulses, spin change, final contact
-/// velocity, the sums `v_c + V_c` the work needs, and the impulse ratio
-/// (absent when `Δn = 0`).
-#[derive(Clone)]
-struct Answer<N> {
-    /// `q_n = (1 + e) s`, the change of `v_cn` restitution asks.
-    qn: N,
-    dn: N,
-    dt: N,
-    dw: N,
-    /// `V_cn`.
-    vcn: N,
-    /// `V_ct`.
-    vct: N,
-    /// `v_cn + V_cn`, formed as `(1 − e) v_cn` (no cancellation for `e → 1`).
-    normal_sum: N,
-    /// `v_ct + V_ct`, formed without cancellation where the law allows.
-    tangential_sum: N,
-    mu: Option<N>,
 }
 
 impl<'a, N: Field> Scene<'a, N> {
@@ -95,7 +72,7 @@ impl<'a, N: Field> Scene<'a, N> {
             fast,
             s: vcn.neg(),
             k2_dd2: k2.add(&dd2),
-            cross: dc.mul(&dd),
+            wnt: dc.mul(&dd).neg(),
             total: k2_dc2.add(&dd2),
             inv_total: OnceCell::new(),
             k2_dc2,
@@ -123,242 +100,122 @@ impl<'a, N: Field> Scene<'a, N> {
     fn inv_total(&self) -> &N {
         self.inv_total.get_or_init(|| N::of(1.0).div(&self.total))
     }
+}
 
-    /// `q_n = (1 + e)(−v_cn)`: the change of `v_cn` that restitution `e` asks (Eq 1).
+impl<N: Field> ContactSpace<N> for Scene<'_, N> {
+    /// `ΔΩ`.
+    type Turn = N;
+    type Outcome = PlanarOutcome;
+
     #[inline(always)]
-    fn normal_target(&self, e: &N) -> N {
-        N::of(1.0).add(e).mul(&self.s)
+    fn un(&self) -> &N {
+        &self.vcn
+    }
+    #[inline(always)]
+    fn ut(&self) -> &N {
+        &self.vct
+    }
+    #[inline(always)]
+    fn s(&self) -> &N {
+        &self.s
+    }
+    #[inline(always)]
+    fn wnn(&self) -> &N {
+        &self.k2_dc2
+    }
+    #[inline(always)]
+    fn wnt(&self) -> &N {
+        &self.wnt
+    }
+    #[inline(always)]
+    fn wtt(&self) -> &N {
+        &self.k2_dd2
     }
 
-    /// `(d_c − μ d_d, D(μ) k²)` with `D(μ) k² = k² + d_c (d_c − μ d_d)` (after
-    /// Eq 7), refused (naming `law`) unless `D > 0`.
+    /// `(D(μ) k², d_c − μ d_d)` with `D(μ) k² = k² + d_c (d_c − μ d_d)` (after Eq 7).
     #[inline(always)]
-    fn positive_dk2(&self, mu: f64, law: Input) -> Exact<N, (N, N)> {
+    fn ratio_coefficient(&self, mu: f64) -> (N, N) {
         let lever = N::of(-mu).mul_add(&self.dd, &self.dc);
-        let dk2 = self.dc.mul_add(&lever, &self.k2);
-        if sign(&dk2)? == Ordering::Greater {
-            Ok((lever, dk2))
-        } else {
-            Err(self.fast.no_impulse_solution(mu, law).into())
-        }
+        (self.dc.mul_add(&lever, &self.k2), lever)
     }
 
-    /// `(Δn, Δt, ΔΩ, ΔV_ct)` for ratio `μ` with `Δn D(μ) k² = q_n k²` (Eqs 5–7):
-    /// `ΔΩ = (d_c − μ d_d) q_n / (D k²)`, `ΔV_ct = [μ (k² + d_d²) − d_c d_d] q_n / (D k²)`.
+    fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError {
+        self.fast.no_impulse_solution(mu, law)
+    }
+
+    /// `Δn = k² q_n / (D k²)`; for central contact `D k² = k²`, so `Δn = q_n`
+    /// exactly (a tie stays decidable).
     #[inline(always)]
-    fn ratio_parts(&self, qn: &N, mu: f64, lever: &N, dk2: &N) -> [N; 4] {
-        let mu = N::of(mu);
-        let per = qn.div(dk2);
-        // Central contact: D k² = k², so Δn = q_n exactly (a tie stays decidable).
-        let dn = if self.central() {
+    fn ratio_normal(&self, qn: &N, per: &N) -> N {
+        if self.central() {
             qn.clone()
         } else {
-            self.k2.mul(&per)
-        };
-        let dt = mu.mul(&dn);
-        let dw = lever.mul(&per);
-        let dvct = mu.mul_add(&self.k2_dd2, &self.cross.neg()).mul(&per);
-        [dn, dt, dw, dvct]
-    }
-
-    /// The answer for a prescribed ratio `μ` with restitution `e` (`q_n` its
-    /// [`Scene::normal_target`]).
-    #[inline(always)]
-    fn ratio_answer(&self, e: &N, qn: &N, mu: f64, law: Input) -> Exact<N, Answer<N>> {
-        let (lever, dk2) = self.positive_dk2(mu, law)?;
-        let [dn, dt, dw, dvct] = self.ratio_parts(qn, mu, &lever, &dk2);
-        Ok(Answer {
-            qn: qn.clone(),
-            dn,
-            dt,
-            dw,
-            vcn: e.mul(&self.vcn).neg(),
-            normal_sum: N::of(1.0).sub(e).mul(&self.vcn),
-            tangential_sum: N::of(2.0).mul_add(&self.vct, &dvct),
-            vct: self.vct.add(&dvct),
-            mu: Some(N::of(mu)),
-        })
-    }
-
-    /// `S Δn = (k² + d_d²) q_n − d_c d_d q_t` and `S Δt = d_c d_d q_n − (k² + d_c²) q_t`:
-    /// the impulses that change `v_cn` by `q_n` and `v_ct` by `−q_t`.
-    #[inline(always)]
-    fn scaled_impulses(&self, qn: &N, qt: &N) -> (N, N) {
-        (
-            self.k2_dd2.mul_add(qn, &self.cross.mul(qt).neg()),
-            self.cross.mul_add(qn, &self.k2_dc2.mul(qt).neg()),
-        )
-    }
-
-    /// The answer with `V_cn = −e v_cn` and `V_ct = −e_t v_ct` (Eqs 1, 20, 3),
-    /// `q_t = (1 + e_t) v_ct`:
-    /// `Δn = [(k² + d_d²) q_n − d_c d_d q_t] / S`, `Δt = [d_c d_d q_n − (k² + d_c²) q_t] / S`,
-    /// `ΔΩ = [d_c q_n + d_d q_t] / S`, `S = k² + d_c² + d_d²`; for `d_c = 0` these
-    /// are Eqs 21–23 and 25 (with `λ = ρ²/k²`). Also returns `S Δn` and `S Δt`,
-    /// whose signs and ratio decide the bilinear law without a quotient.
-    #[inline(always)]
-    fn target_answer(&self, e: &N, qn: &N, et: f64) -> Exact<N, (Answer<N>, N, N)> {
-        let qt = N::of(1.0).add(&N::of(et)).mul(&self.vct);
-        let (sdn, sdt) = self.scaled_impulses(qn, &qt);
-        let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
-        let inv_total = self.inv_total();
-        let answer = Answer {
-            vcn: e.mul(&self.vcn).neg(),
-            vct: N::of(et).mul(&self.vct).neg(),
-            normal_sum: N::of(1.0).sub(e).mul(&self.vcn),
-            tangential_sum: N::of(1.0).sub(&N::of(et)).mul(&self.vct),
-            dn: if self.central() {
-                qn.clone()
-            } else {
-                sdn.mul(inv_total)
-            },
-            dt: sdt.mul(inv_total),
-            dw: self.dc.mul_add(qn, &self.dd.mul(&qt)).mul(inv_total),
-            qn: qn.clone(),
-            mu,
-        };
-        Ok((answer, sdn, sdt))
-    }
-
-    /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `V_ct = 0`
-    /// (`q_t = v_ct`) and changes `v_cn` by `q_n` (Eq 14 for `d_c = 0`),
-    /// `None` if its `Δn = 0`.
-    #[inline(always)]
-    fn critical_ratio(&self, qn: &N) -> Exact<N, Option<N>> {
-        let (sdn, sdt) = self.scaled_impulses(qn, &self.vct);
-        Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
-    }
-
-    /// The bilinear law (section 3; Coulomb friction for `e_t = 0`): the
-    /// target answer `V_ct = −e_t v_ct` when its ratio satisfies `|μ| ≤ f`
-    /// (regime `capped`), else sliding through separation with `|μ| = f`
-    /// opposing the initial slip.
-    fn bilinear(&self, e: &N, f: f64, et: f64, capped: Regime, outputs: Outputs) -> Exact<N, PlanarOutcome> {
-        let qn = self.normal_target(e);
-        let (target, sdn, sdt) = self.target_answer(e, &qn, et)?;
-        // For e_t = 0 the target ratio is the critical ratio μ_c itself.
-        let known_critical = (et == 0.0).then(|| target.mu.clone());
-        if let Some(mu_target) = &target.mu {
-            // |S Δt| ≤ f |S Δn|, i.e. |μ_target| ≤ f, decided without a quotient.
-            let room = N::of(f).mul(&abs(&sdn)?).sub(&abs(&sdt)?);
-            if sign(&room)? != Ordering::Less {
-                if sign(&sdn)? == Ordering::Less {
-                    return Err(self
-                        .fast
-                        .no_impulse_solution(mu_target.approx(), Input::Friction)
-                        .into());
-                }
-                return self.assemble(e, None, capped, &target, known_critical, outputs, Input::Friction);
-            }
+            self.k2.mul(per)
         }
-        // Sliding opposes the slip; with no initial slip it follows μ_target
-        // (which exists then: v_ct = 0 gives Δn > 0).
-        let direction = match sign(&self.vct)? {
-            Ordering::Greater => -1.0,
-            Ordering::Less => 1.0,
-            Ordering::Equal => match (sign(&sdt)?, sign(&sdn)?) {
-                (Ordering::Less, Ordering::Greater) | (Ordering::Greater, Ordering::Less) => -1.0,
-                _ => 1.0,
-            },
-        };
-        let sliding = self.ratio_answer(e, &qn, direction * f + 0.0, Input::Friction)?;
-        self.assemble(
-            e,
-            None,
-            Regime::Sliding,
-            &sliding,
-            known_critical,
-            outputs,
-            Input::Friction,
-        )
     }
 
-    /// The Appendix's two phases: approach to `v̄_cn = 0` with `μ_A`, rebound
-    /// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) / D(μ_A)` (Eq 11, A-16). The
-    /// reported ratio is the overall `μ = P_t / P_n`.
-    fn kinetic(&self, r: f64, mu_a: f64, mu_r: f64, outputs: Outputs) -> Exact<N, PlanarOutcome> {
-        let (lever_a, dk_a) = self.positive_dk2(mu_a, Input::ApproachImpulseRatio)?;
-        let rebound = if r > 0.0 {
-            Some(self.positive_dk2(mu_r, Input::ReboundImpulseRatio)?)
+    /// `ΔΩ = (d_c − μ d_d) q_n / (D k²)`.
+    #[inline(always)]
+    fn ratio_turn(&self, lever: &N, per: &N) -> N {
+        lever.mul(per)
+    }
+
+    /// `1 / S`, `S = k² + d_c² + d_d²` (`det W̃ = k² S` in units of `m k²`).
+    #[inline(always)]
+    fn inv_det(&self) -> &N {
+        self.inv_total()
+    }
+
+    #[inline(always)]
+    fn target_normal(&self, qn: &N, sdn: &N, inv_det: &N) -> N {
+        if self.central() {
+            qn.clone()
         } else {
-            None
-        };
-        let e = match &rebound {
-            Some((_, dk_r)) => N::of(r).mul(&dk_r.div(&dk_a)),
-            None => N::of(0.0),
-        };
-        let approach = self.ratio_parts(&self.s, mu_a, &lever_a, &dk_a);
-        let [dn, dt, dw, dvct] = match &rebound {
-            Some((lever_r, dk_r)) => {
-                let rebound = self.ratio_parts(&e.mul(&self.s), mu_r, lever_r, dk_r);
-                [0, 1, 2, 3].map(|i| approach[i].add(&rebound[i]))
-            }
-            None => approach,
-        };
-        let answer = Answer {
-            qn: self.normal_target(&e),
-            mu: Some(dt.div(&dn)),
-            vcn: e.mul(&self.vcn).neg(),
-            normal_sum: N::of(1.0).sub(&e).mul(&self.vcn),
-            tangential_sum: N::of(2.0).mul_add(&self.vct, &dvct),
-            vct: self.vct.add(&dvct),
-            dn,
-            dt,
-            dw,
-        };
-        self.assemble(
-            &e,
-            Some(r),
-            Regime::Prescribed,
-            &answer,
-            None,
-            outputs,
-            Input::KineticRestitution,
-        )
+            sdn.mul(inv_det)
+        }
     }
 
-    /// The outcome of one answer: refuses energy creation, rounds each output
-    /// once. `T_L = −½ m [Δn (v_cn + V_cn) + Δt (v_ct + V_ct)]` is the work of
-    /// the impulses (Kelvin and Tait, as in the Appendix), which never
-    /// subtracts two nearly equal energies.
-    #[allow(clippy::too_many_arguments)] // each argument is one named part of the answer
+    /// `ΔΩ = (d_c q_n + d_d q_t) / S`.
     #[inline(always)]
-    fn assemble(
-        &self,
-        e: &N,
-        kinetic_restitution: Option<f64>,
-        regime: Regime,
-        a: &Answer<N>,
-        known_critical: Option<Option<N>>,
-        outputs: Outputs,
-        law: Input,
-    ) -> Exact<N, PlanarOutcome> {
-        let mu = a.mu.as_ref().ok_or(ImpactError::OutputNotFinite {
-            output: Output::ImpulseRatio,
-        })?;
-        let work = a.dn.mul_add(&a.normal_sum, &a.dt.mul(&a.tangential_sum));
-        if sign(&work)? == Ordering::Greater {
-            return Err(ImpactError::CreatesEnergy {
-                input: law,
-                impulse_ratio: mu.approx(),
-                energy_loss: -0.5 * self.m.mul(&work).approx(),
-                admissible: self.fast.admissible_interval(e.approx()),
-            }
-            .into());
+    fn target_turn(&self, qn: &N, qt: &N, inv_det: &N) -> N {
+        self.dc.mul_add(qn, &self.dd.mul(qt)).mul(inv_det)
+    }
+
+    #[inline(always)]
+    fn add_turns(a: &N, b: &N) -> N {
+        a.add(b)
+    }
+
+    fn creates_energy(&self, e: &N, mu: &N, work: &N, law: Input) -> ImpactError {
+        ImpactError::CreatesEnergy {
+            input: law,
+            impulse_ratio: mu.approx(),
+            energy_loss: -0.5 * self.m.mul(work).approx(),
+            admissible: self.fast.admissible_interval(e.approx()),
         }
-        let w = self.w.add(&a.dw);
+    }
+
+    /// The outcome of one answer, each output rounded once.
+    /// `T_L = −½ m [Δn (v_cn + V_cn) + Δt (v_ct + V_ct)]` is the work of the
+    /// impulses (Kelvin and Tait, as in the Appendix), which never subtracts
+    /// two nearly equal energies.
+    #[inline(always)]
+    fn assemble(&self, x: &Assembly<'_, N, N>) -> Exact<N, PlanarOutcome> {
+        let a = x.answer;
+        let e = x.e;
+        let w = self.w.add(&a.turn);
         // V_n = v_n + Δn and V_t = v_t + Δt, except where an offset is exactly 0:
         // then V_n = V_cn (d_c = 0) and V_t = V_ct (d_d = 0) by the definitions of
         // the contact velocities, so a sticking or plastic zero stays structural and
         // is decided without a quotient. (Forming V_t = V_ct + d_d Ω always would
         // cancel two terms d_d²/k² times larger than V_t when d_d² ≫ k².)
         let vn = if self.central() {
-            a.vcn.clone()
+            a.un.clone()
         } else {
             self.vn.add(&a.dn)
         };
         let vt = if self.fast.contact.normal_offset == 0.0 {
-            a.vct.clone()
+            a.ut.clone()
         } else {
             self.vt.add(&a.dt)
         };
@@ -368,31 +225,17 @@ impl<'a, N: Field> Scene<'a, N> {
             angular: out(Output::FinalAngularVelocity, &w)?,
         };
         let final_contact = ContactVelocity {
-            normal: out(Output::FinalNormalContactVelocity, &a.vcn)?,
-            tangential: out(Output::FinalTangentialContactVelocity, &a.vct)?,
+            normal: out(Output::FinalNormalContactVelocity, &a.un)?,
+            tangential: out(Output::FinalTangentialContactVelocity, &a.ut)?,
         };
         let impulse = Impulse {
             normal: out(Output::NormalImpulse, &self.m.mul(&a.dn))?,
             tangential: out(Output::TangentialImpulse, &self.m.mul(&a.dt))?,
         };
-        let impulse_ratio = out(Output::ImpulseRatio, mu)?;
-        let critical = match known_critical {
-            Some(known) if outputs.critical_impulse_ratio || known.is_some() => Some(known),
-            None if outputs.critical_impulse_ratio => Some(self.critical_ratio(&a.qn)?),
-            _ => None,
-        };
-        let critical_impulse_ratio = match critical {
-            Some(Some(mu_c)) => Some(out(Output::CriticalImpulseRatio, &mu_c)?),
-            Some(None) => {
-                return Err(ImpactError::OutputNotFinite {
-                    output: Output::CriticalImpulseRatio,
-                }
-                .into());
-            }
-            None => None,
-        };
-        let energy = if outputs.energy {
-            Some(self.energy(&work)?)
+        let impulse_ratio = out(Output::ImpulseRatio, x.mu)?;
+        let critical_impulse_ratio = critical_output(&x.critical)?;
+        let energy = if x.outputs.energy {
+            Some(self.energy(&x.work)?)
         } else {
             None
         };
@@ -422,12 +265,14 @@ impl<'a, N: Field> Scene<'a, N> {
             impulse_ratio,
             critical_impulse_ratio,
             restitution,
-            kinetic_restitution: kinetic_restitution.unwrap_or(restitution),
-            regime,
+            kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution),
+            regime: x.regime,
             energy,
         })
     }
+}
 
+impl<N: Field> Scene<'_, N> {
     /// The initial energy `½ m (v_n² + v_t²) + ½ I ω²`, the loss from the work
     /// (Eq 8), the final energy as their difference (the work form equals
     /// `T_0 − T_f` exactly, by the moment equation), and
@@ -468,58 +313,7 @@ impl<'a, N: Field> Scene<'a, N> {
 /// A planar impact of a rigid body in the field `N`, in a validated scene
 /// under a validated law.
 pub(crate) fn rigid<N: Field>(scene: &PlanarScene, law: &Law, outputs: Outputs) -> Exact<N, PlanarOutcome> {
-    let sc = Scene::<N>::new(scene);
-    match *law {
-        Law::Frictionless { restitution } => {
-            let e = N::of(restitution);
-            let answer = sc.ratio_answer(&e, &sc.normal_target(&e), 0.0, Input::Restitution)?;
-            sc.assemble(
-                &e,
-                None,
-                Regime::Frictionless,
-                &answer,
-                None,
-                outputs,
-                Input::Restitution,
-            )
-        }
-        Law::ImpulseRatio {
-            restitution,
-            impulse_ratio,
-        } => {
-            let e = N::of(restitution);
-            let answer = sc.ratio_answer(&e, &sc.normal_target(&e), impulse_ratio, Input::ImpulseRatio)?;
-            sc.assemble(
-                &e,
-                None,
-                Regime::Prescribed,
-                &answer,
-                None,
-                outputs,
-                Input::ImpulseRatio,
-            )
-        }
-        Law::Friction {
-            restitution,
-            friction,
-        } => sc.bilinear(&N::of(restitution), friction, 0.0, Regime::Sticking, outputs),
-        Law::TangentialRestitution {
-            restitution,
-            friction,
-            tangential_restitution,
-        } => sc.bilinear(
-            &N::of(restitution),
-            friction,
-            tangential_restitution,
-            Regime::Restitution,
-            outputs,
-        ),
-        Law::KineticRestitution {
-            value,
-            approach_impulse_ratio,
-            rebound_impulse_ratio,
-        } => sc.kinetic(value, approach_impulse_ratio, rebound_impulse_ratio, outputs),
-    }
+    under_law(&Scene::<N>::new(scene), law, outputs)
 }
 
 /// The validated inputs of a point-mass impact: `m > 0`, `v_n < 0`, `e ∈ [0, 1]`.

@@ -1,0 +1,446 @@
+//! The laws of one point contact, written once in contact space for every
+//! scene: one lamina against a barrier (`planar.rs`) and two laminae, or one
+//! against a barrier, in world axes (`bodies.rs`).
+//!
+//! A scene reduces to its contact space: the approach velocity `s = −u_n > 0`,
+//! the slip `u_t`, and the symmetric positive definite matrix `W̃` with
+//! `Δu = W̃ q` (Eqs A-1…A-3 with `ΔU = W P`), each in the scene's own scaling
+//! (the one body's per-unit-mass `k²`-scaled forms; two bodies' unnormalised
+//! normal). Every law is then one or two of two answers with a decision between
+//! them: a given impulse ratio `μ` ([`ratio_answer`], Eqs 5–7, `q_t = μ q_n`,
+//! `q_n (W̃_nn + μ W̃_nt) = (1 + e) s`) or a given final contact velocity
+//! ([`target_answer`], Eqs 1, 20 and 3: `q = W̃⁻¹ Δu`). The scene turns the
+//! answer's impulse into its bodies' outputs ([`ContactSpace::assemble`]).
+
+use std::cmp::Ordering;
+
+use super::{Exact, abs, sign};
+use crate::arith::Field;
+use crate::error::{ImpactError, Input, Output};
+use crate::impact::Law;
+use crate::outcome::{Outputs, Regime};
+
+/// A scene reduced to its contact space, in the field `N`.
+///
+/// `W̃ = [[A, B], [B, C]]` in `(n, t)` order; `q` is the impulse in the scene's
+/// unit, `Δn`/`Δt` its parts as the scene carries them.
+pub(crate) trait ContactSpace<N: Field> {
+    /// What the scene carries beside the impulse per answer (the one body's
+    /// spin change; nothing for bodies in world axes, whose spins follow from `q`).
+    type Turn: Clone;
+    /// The outcome the scene answers.
+    type Outcome;
+    /// `u_n < 0`.
+    fn un(&self) -> &N;
+    /// `u_t`.
+    fn ut(&self) -> &N;
+    /// `s = −u_n > 0`.
+    fn s(&self) -> &N;
+    /// `A = W̃_nn`.
+    fn wnn(&self) -> &N;
+    /// `B = W̃_nt`.
+    fn wnt(&self) -> &N;
+    /// `C = W̃_tt`.
+    fn wtt(&self) -> &N;
+    /// `A + μ B` (the scaled `D(μ)`, after Eq 7) and the turn per unit of it.
+    fn ratio_coefficient(&self, mu: f64) -> (N, Self::Turn);
+    /// The refusal of ratio `μ` whose `A + μ B ≤ 0`.
+    fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError;
+    /// `Δn` for ratio answers, `per = q_n / (A + μ B)` being given with the
+    /// asked change `q_n` of `u_n`.
+    fn ratio_normal(&self, qn: &N, per: &N) -> N;
+    /// The turn of a ratio answer.
+    fn ratio_turn(&self, lever: &Self::Turn, per: &N) -> Self::Turn;
+    /// `1 / det W̃` in the scene's unit of `Δ`.
+    fn inv_det(&self) -> &N;
+    /// `Δn` of a target answer: `(C q_n + B q_t) / det`, given as `sdn`.
+    fn target_normal(&self, qn: &N, sdn: &N, inv_det: &N) -> N;
+    /// The turn of a target answer that changes `u_n` by `q_n` and `u_t` by `−q_t`.
+    fn target_turn(&self, qn: &N, qt: &N, inv_det: &N) -> Self::Turn;
+    /// The refusal of an answer whose `work` (`Δn (u_n + U_n) + Δt (u_t + U_t)`)
+    /// is positive: it would create energy.
+    fn creates_energy(&self, e: &N, mu: &N, work: &N, law: Input) -> ImpactError;
+    /// The turn of two phases together.
+    fn add_turns(a: &Self::Turn, b: &Self::Turn) -> Self::Turn;
+    /// The outcome of one answer (see [`Assembly`]).
+    fn assemble(&self, answer: &Assembly<'_, N, Self::Turn>) -> Exact<N, Self::Outcome>;
+}
+
+/// One answer in the field: impulse parts, turn, final contact velocity, the
+/// sums `u + U` the work needs, and the impulse ratio (absent when `Δn = 0`).
+#[derive(Clone)]
+pub(crate) struct Answer<N, T> {
+    /// `q_n = (1 + e) s`, the change of `u_n` restitution asks.
+    pub qn: N,
+    pub dn: N,
+    pub dt: N,
+    pub turn: T,
+    /// `U_n`.
+    pub un: N,
+    /// `U_t`.
+    pub ut: N,
+    /// `u_n + U_n`, formed as `(1 − e) u_n` (no cancellation for `e → 1`).
+    pub normal_sum: N,
+    /// `u_t + U_t`, formed without cancellation where the law allows.
+    pub tangential_sum: N,
+    pub mu: Option<N>,
+}
+
+/// A target answer with `det·Δn` and `det·Δt`.
+type Target<N, T> = (Answer<N, T>, N, N);
+
+/// What a scene assembles an outcome from: the answer and the law's reports.
+pub(crate) struct Assembly<'a, N, T> {
+    /// Restitution `e` (the equivalent `e` of the kinetic law).
+    pub e: &'a N,
+    /// `R` under the kinetic law.
+    pub kinetic_restitution: Option<f64>,
+    pub regime: Regime,
+    pub answer: &'a Answer<N, T>,
+    /// The impulse ratio, checked present.
+    pub mu: &'a N,
+    /// `Δn (u_n + U_n) + Δt (u_t + U_t)`, checked `≤ 0` (no energy created).
+    pub work: N,
+    /// `μ_c`, when asked for or known: `None` inside when its `Δn = 0`.
+    pub critical: Option<Option<N>>,
+    pub outputs: Outputs,
+}
+
+/// The law's answer in a scene: the shared law of every planar scene.
+#[inline(always)]
+pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    law: &Law,
+    outputs: Outputs,
+) -> Exact<N, S::Outcome> {
+    match *law {
+        Law::Frictionless { restitution } => {
+            let e = N::of(restitution);
+            let answer = ratio_answer(sc, &e, &normal_target(sc, &e), 0.0, Input::Restitution)?;
+            finish(
+                sc,
+                &e,
+                None,
+                Regime::Frictionless,
+                &answer,
+                None,
+                outputs,
+                Input::Restitution,
+            )
+        }
+        Law::ImpulseRatio {
+            restitution,
+            impulse_ratio,
+        } => {
+            let e = N::of(restitution);
+            let answer = ratio_answer(sc, &e, &normal_target(sc, &e), impulse_ratio, Input::ImpulseRatio)?;
+            finish(
+                sc,
+                &e,
+                None,
+                Regime::Prescribed,
+                &answer,
+                None,
+                outputs,
+                Input::ImpulseRatio,
+            )
+        }
+        Law::Friction {
+            restitution,
+            friction,
+        } => bilinear(sc, &N::of(restitution), friction, 0.0, Regime::Sticking, outputs),
+        Law::TangentialRestitution {
+            restitution,
+            friction,
+            tangential_restitution,
+        } => bilinear(
+            sc,
+            &N::of(restitution),
+            friction,
+            tangential_restitution,
+            Regime::Restitution,
+            outputs,
+        ),
+        Law::KineticRestitution {
+            value,
+            approach_impulse_ratio,
+            rebound_impulse_ratio,
+        } => kinetic(sc, value, approach_impulse_ratio, rebound_impulse_ratio, outputs),
+    }
+}
+
+/// `q_n = (1 + e) s`: the change of `u_n` that restitution `e` asks (Eq 1).
+#[inline(always)]
+fn normal_target<N: Field, S: ContactSpace<N>>(sc: &S, e: &N) -> N {
+    N::of(1.0).add(e).mul(sc.s())
+}
+
+/// `A + μ B` with its turn, refused (naming `law`) unless positive.
+#[inline(always)]
+fn positive_coefficient<N: Field, S: ContactSpace<N>>(sc: &S, mu: f64, law: Input) -> Exact<N, (S::Turn, N)> {
+    let (d, lever) = sc.ratio_coefficient(mu);
+    if sign(&d)? == Ordering::Greater {
+        Ok((lever, d))
+    } else {
+        Err(sc.no_impulse_solution(mu, law).into())
+    }
+}
+
+/// `(Δn, Δt, turn, ΔU_t)` for ratio `μ` changing `u_n` by `q_n` (Eqs 5–7):
+/// `q_n = (A + μ B) Δ_n`, `ΔU_t = (B + μ C) q_n / (A + μ B)`.
+#[inline(always)]
+fn ratio_parts<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    qn: &N,
+    mu: f64,
+    lever: &S::Turn,
+    d: &N,
+) -> (N, N, S::Turn, N) {
+    let mu = N::of(mu);
+    let per = qn.div(d);
+    let dn = sc.ratio_normal(qn, &per);
+    let dt = mu.mul(&dn);
+    let turn = sc.ratio_turn(lever, &per);
+    let dut = mu.mul_add(sc.wtt(), sc.wnt()).mul(&per);
+    (dn, dt, turn, dut)
+}
+
+/// The answer for a prescribed ratio `μ` with restitution `e` (`q_n` its
+/// [`normal_target`]).
+#[inline(always)]
+fn ratio_answer<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    e: &N,
+    qn: &N,
+    mu: f64,
+    law: Input,
+) -> Exact<N, Answer<N, S::Turn>> {
+    let (lever, d) = positive_coefficient(sc, mu, law)?;
+    let (dn, dt, turn, dut) = ratio_parts(sc, qn, mu, &lever, &d);
+    Ok(Answer {
+        qn: qn.clone(),
+        dn,
+        dt,
+        turn,
+        un: e.mul(sc.un()).neg(),
+        normal_sum: N::of(1.0).sub(e).mul(sc.un()),
+        tangential_sum: N::of(2.0).mul_add(sc.ut(), &dut),
+        ut: sc.ut().add(&dut),
+        mu: Some(N::of(mu)),
+    })
+}
+
+/// `det·Δn = C q_n + B q_t` and `det·Δt = −B q_n − A q_t`: the impulse
+/// (`adj W̃ Δu`) that changes `u_n` by `q_n` and `u_t` by `−q_t`.
+#[inline(always)]
+fn scaled_impulses<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, qt: &N) -> (N, N) {
+    (
+        sc.wtt().mul_add(qn, &sc.wnt().mul(qt)),
+        sc.wnt().neg().mul_add(qn, &sc.wnn().mul(qt).neg()),
+    )
+}
+
+/// The answer with `U_n = −e u_n` and `U_t = −e_t u_t` (Eqs 1, 20, 3),
+/// `q_t = (1 + e_t) u_t`; for one body with `d_c = 0` these are Eqs 21–23
+/// and 25. Also returns `det·Δn` and `det·Δt`, whose signs and ratio decide
+/// the bilinear law without a quotient.
+#[inline(always)]
+fn target_answer<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    e: &N,
+    qn: &N,
+    et: f64,
+) -> Exact<N, Target<N, S::Turn>> {
+    let qt = N::of(1.0).add(&N::of(et)).mul(sc.ut());
+    let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
+    let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
+    let inv = sc.inv_det();
+    let answer = Answer {
+        un: e.mul(sc.un()).neg(),
+        ut: N::of(et).mul(sc.ut()).neg(),
+        normal_sum: N::of(1.0).sub(e).mul(sc.un()),
+        tangential_sum: N::of(1.0).sub(&N::of(et)).mul(sc.ut()),
+        dn: sc.target_normal(qn, &sdn, inv),
+        dt: sdt.mul(inv),
+        turn: sc.target_turn(qn, &qt, inv),
+        qn: qn.clone(),
+        mu,
+    };
+    Ok((answer, sdn, sdt))
+}
+
+/// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `U_t = 0`
+/// (`q_t = u_t`) and changes `u_n` by `q_n` (Eq 14 for one body with
+/// `d_c = 0`), `None` if its `Δn = 0`.
+#[inline(always)]
+fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Option<N>> {
+    let (sdn, sdt) = scaled_impulses(sc, qn, sc.ut());
+    Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
+}
+
+/// The bilinear law (section 3; Coulomb friction for `e_t = 0`): the
+/// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f`
+/// (regime `capped`), else sliding through separation with `|μ| = f`
+/// opposing the initial slip.
+fn bilinear<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    e: &N,
+    f: f64,
+    et: f64,
+    capped: Regime,
+    outputs: Outputs,
+) -> Exact<N, S::Outcome> {
+    let qn = normal_target(sc, e);
+    let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
+    // For e_t = 0 the target ratio is the critical ratio μ_c itself.
+    let known_critical = (et == 0.0).then(|| target.mu.clone());
+    if let Some(mu_target) = &target.mu {
+        // |det Δt| ≤ f |det Δn|, i.e. |μ_target| ≤ f, decided without a quotient.
+        let room = N::of(f).mul(&abs(&sdn)?).sub(&abs(&sdt)?);
+        if sign(&room)? != Ordering::Less {
+            if sign(&sdn)? == Ordering::Less {
+                return Err(sc.no_impulse_solution(mu_target.approx(), Input::Friction).into());
+            }
+            return finish(
+                sc,
+                e,
+                None,
+                capped,
+                &target,
+                known_critical,
+                outputs,
+                Input::Friction,
+            );
+        }
+    }
+    // Sliding opposes the slip; with no initial slip it follows μ_target
+    // (which exists then: u_t = 0 gives Δn > 0).
+    let direction = match sign(sc.ut())? {
+        Ordering::Greater => -1.0,
+        Ordering::Less => 1.0,
+        Ordering::Equal => match (sign(&sdt)?, sign(&sdn)?) {
+            (Ordering::Less, Ordering::Greater) | (Ordering::Greater, Ordering::Less) => -1.0,
+            _ => 1.0,
+        },
+    };
+    let sliding = ratio_answer(sc, e, &qn, direction * f + 0.0, Input::Friction)?;
+    finish(
+        sc,
+        e,
+        None,
+        Regime::Sliding,
+        &sliding,
+        known_critical,
+        outputs,
+        Input::Friction,
+    )
+}
+
+/// The Appendix's two phases: approach to `ū_n = 0` with `μ_A`, rebound
+/// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) / D(μ_A)` (Eq 11, A-16). The
+/// reported ratio is the overall `μ = P_t / P_n`.
+fn kinetic<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    r: f64,
+    mu_a: f64,
+    mu_r: f64,
+    outputs: Outputs,
+) -> Exact<N, S::Outcome> {
+    let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachImpulseRatio)?;
+    let rebound = if r > 0.0 {
+        Some(positive_coefficient(sc, mu_r, Input::ReboundImpulseRatio)?)
+    } else {
+        None
+    };
+    let e = match &rebound {
+        Some((_, d_r)) => N::of(r).mul(&d_r.div(&d_a)),
+        None => N::of(0.0),
+    };
+    let approach = ratio_parts(sc, sc.s(), mu_a, &lever_a, &d_a);
+    let (dn, dt, turn, dut) = match &rebound {
+        Some((lever_r, d_r)) => {
+            let rebound = ratio_parts(sc, &e.mul(sc.s()), mu_r, lever_r, d_r);
+            (
+                approach.0.add(&rebound.0),
+                approach.1.add(&rebound.1),
+                S::add_turns(&approach.2, &rebound.2),
+                approach.3.add(&rebound.3),
+            )
+        }
+        None => approach,
+    };
+    let answer = Answer {
+        qn: normal_target(sc, &e),
+        mu: Some(dt.div(&dn)),
+        un: e.mul(sc.un()).neg(),
+        normal_sum: N::of(1.0).sub(&e).mul(sc.un()),
+        tangential_sum: N::of(2.0).mul_add(sc.ut(), &dut),
+        ut: sc.ut().add(&dut),
+        dn,
+        dt,
+        turn,
+    };
+    finish(
+        sc,
+        &e,
+        Some(r),
+        Regime::Prescribed,
+        &answer,
+        None,
+        outputs,
+        Input::KineticRestitution,
+    )
+}
+
+/// Checks one answer and hands it to the scene: the ratio must exist, the
+/// work `Δn (u_n + U_n) + Δt (u_t + U_t)` (the loss is `−½` of it in the
+/// scene's unit: Kelvin and Tait, as in the Appendix) must not be positive,
+/// and `μ_c` is formed when asked for.
+#[allow(clippy::too_many_arguments)] // each argument is one named part of the answer
+#[inline(always)]
+fn finish<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    e: &N,
+    kinetic_restitution: Option<f64>,
+    regime: Regime,
+    a: &Answer<N, S::Turn>,
+    known_critical: Option<Option<N>>,
+    outputs: Outputs,
+    law: Input,
+) -> Exact<N, S::Outcome> {
+    let mu = a.mu.as_ref().ok_or(ImpactError::OutputNotFinite {
+        output: Output::ImpulseRatio,
+    })?;
+    let work = a.dn.mul_add(&a.normal_sum, &a.dt.mul(&a.tangential_sum));
+    if sign(&work)? == Ordering::Greater {
+        return Err(sc.creates_energy(e, mu, &work, law).into());
+    }
+    let critical = match known_critical {
+        Some(known) if outputs.critical_impulse_ratio || known.is_some() => Some(known),
+        None if outputs.critical_impulse_ratio => Some(critical_ratio(sc, &a.qn)?),
+        _ => None,
+    };
+    sc.assemble(&Assembly {
+        e,
+        kinetic_restitution,
+        regime,
+        answer: a,
+        mu,
+        work,
+        critical,
+        outputs,
+    })
+}
+
+/// `μ_c` as an output (`None` when not asked for), refused when its `Δn = 0`.
+#[inline(always)]
+pub(crate) fn critical_output<N: Field>(critical: &Option<Option<N>>) -> Exact<N, Option<f64>> {
+    match critical {
+        Some(Some(mu_c)) => Ok(Some(super::out(Output::CriticalImpulseRatio, mu_c)?)),
+        Some(None) => Err(ImpactError::OutputNotFinite {
+            output: Output::CriticalImpulseRatio,
+        }
+        .into()),
+        None => Ok(None),
+    }
+}
