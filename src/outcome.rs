@@ -4,9 +4,10 @@
 use crate::scene::{ContactVelocity, PlanarVelocity};
 
 /// Which tangential law produced a planar answer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Regime {
     /// No tangential impulse (`μ = 0`).
+    #[default]
     Frictionless,
     /// A prescribed impulse ratio `μ`, or the two-phase ratios `μ_A`, `μ_R`.
     Prescribed,
@@ -79,7 +80,7 @@ impl Default for Outputs {
 }
 
 /// The outcome of a planar impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PlanarOutcome {
     /// Final velocities `V_n`, `V_t`, `Ω`.
     pub final_velocity: PlanarVelocity,
@@ -118,8 +119,9 @@ pub struct PlanarEnergy {
 }
 
 /// Which branch of the torsional model applies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum TorsionalRegime {
+    #[default]
     /// `|ω_n| ≤ ω_s`: `Ω_n = −e_z ω_n` (Eq 28).
     Restitution,
     /// `|ω_n| > ω_s`: rotational sliding through separation (Eq 30).
@@ -148,7 +150,7 @@ pub struct RotationalEnergy {
 }
 
 /// The outcome of a torsional impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TorsionalOutcome {
     /// Final normal velocity `V_n = −e v_n`.
     pub final_normal_velocity: f64,

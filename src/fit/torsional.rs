@@ -219,7 +219,10 @@ pub fn torsional(observations: &[TorsionalObservation]) -> Result<TorsionalFit, 
                 mu_z: muz.unwrap_or(0.0),
                 rho: o.pitch_radius,
             };
-            model::torsional::<f64>(&torsion, false).ok()
+            let mut outcome = TorsionalOutcome::default();
+            model::torsional::<f64>(&torsion, false, &mut outcome)
+                .ok()
+                .map(|()| outcome)
         })
         .collect();
     let sliding: Vec<bool> = predicted

@@ -99,8 +99,8 @@ pub enum Stage {
 /// A physical case: an impact type whose values carry their law, with the
 /// lists of what it reads and answers.
 pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
-    /// The outcome of one impact.
-    type Outcome: Copy + fmt::Debug + Send;
+    /// The outcome of one impact (the default one is overwritten by every answer).
+    type Outcome: Copy + fmt::Debug + Default + Send;
     /// What a sweep validates once when no axis changes it.
     type Fixed: Clone + fmt::Debug + Send + Sync;
     /// Every input any impact of this case may read, in request order.
@@ -130,16 +130,20 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     fn output(outcome: &Self::Outcome, output: Output) -> Value;
     /// Validates what no axis in `swept` changes, once for a sweep.
     fn fix(&self, swept: &[Input]) -> Self::Fixed;
-    /// Validates and evaluates the impact in `arithmetic`, `fixed` being this
-    /// impact's own [`Case::fix`] result for the inputs not swept; `in_range`
-    /// tells `Fast` whether every input read is in the fast range.
+    /// Validates and evaluates the impact in `arithmetic` into `out`, `fixed`
+    /// being this impact's own [`Case::fix`] result for the inputs not swept;
+    /// `in_range` tells `Fast` whether every input read is in the fast range.
+    /// The outcome is written in place, whole on success and not at all on a
+    /// refusal: returned by value, it would be copied through every layer
+    /// (and read back before the copies settle).
     fn evaluate(
         &self,
         fixed: &Self::Fixed,
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
-    ) -> (Result<Self::Outcome>, Stage);
+        out: &mut Self::Outcome,
+    ) -> (Result<()>, Stage);
 }
 
 /// Solves one impact in `precision`, computing the optional `outputs`.
@@ -155,7 +159,9 @@ pub fn solve_in<C: Case>(
 ) -> (Result<C::Outcome>, Stage) {
     let fixed = impact.fix(&[]);
     let in_range = arithmetic == Arithmetic::Fast && all_in_fast_range(impact, C::INPUTS);
-    impact.evaluate(&fixed, outputs, arithmetic, in_range)
+    let mut outcome = C::Outcome::default();
+    let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
+    (result.map(|()| outcome), stage)
 }
 
 /// One case prepared for many impacts that differ only in the `swept`
@@ -192,11 +198,18 @@ impl<C: Case> Solver<C> {
     /// Solves `impact` (the base with other values of the swept inputs).
     #[inline]
     pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
+        let mut outcome = C::Outcome::default();
+        self.solve_into(impact, &mut outcome).map(|()| outcome)
+    }
+
+    /// Solves `impact` into `out` (left as it was on a refusal).
+    #[inline]
+    pub fn solve_into(&self, impact: &C, out: &mut C::Outcome) -> Result<()> {
         let in_range = self.arithmetic == Arithmetic::Fast
             && self.fixed_in_range
             && all_in_fast_range(impact, &self.swept);
         impact
-            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range)
+            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range, out)
             .0
     }
 }
@@ -226,29 +239,30 @@ pub(crate) fn evaluate<T>(
     arithmetic: Arithmetic,
     in_range: bool,
     model: impl Model<T>,
-) -> (Result<T>, Stage) {
+    out: &mut T,
+) -> (Result<()>, Stage) {
     match arithmetic {
-        Arithmetic::Fast if in_range => fast_or_exact(&model),
-        Arithmetic::Plain => fast_or_exact(&model),
-        Arithmetic::Fast | Arithmetic::Exact => adaptive(&model),
-        Arithmetic::Rational => rational(&model),
+        Arithmetic::Fast if in_range => fast_or_exact(&model, out),
+        Arithmetic::Plain => fast_or_exact(&model, out),
+        Arithmetic::Fast | Arithmetic::Exact => adaptive(&model, out),
+        Arithmetic::Rational => rational(&model, out),
     }
 }
 
 /// The model in exact fractions alone.
 #[inline(never)]
-fn rational<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
-    (decided(model.run::<Fraction>()), Stage::Rational)
+fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+    (decided(model.run::<Fraction>(out)), Stage::Rational)
 }
 
 /// The f64 answer, or the exact one where the f64 evaluation leaves the f64
 /// range (an output that overflows, a decision on an infinity or a NaN).
 #[inline(always)]
-fn fast_or_exact<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
-    match model.run::<f64>() {
-        Ok(v) => (Ok(v), Stage::Fast),
+fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+    match model.run::<f64>(out) {
+        Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Refused(ImpactError::OutputNotFinite { .. }) | Fail::Undecided(OutOfRange)) => {
-            adaptive(model)
+            adaptive(model, out)
         }
         Err(Fail::Refused(e)) => (Err(e), Stage::Fast),
     }
@@ -256,8 +270,9 @@ fn fast_or_exact<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
 
 /// The model of one validated impact, ready to run in any field.
 pub(crate) trait Model<T> {
-    /// Evaluates the model in `N`.
-    fn run<N: Field>(&self) -> Exact<N, T>;
+    /// Evaluates the model in `N`, writing the outcome to `out` (whole, or
+    /// not at all when it fails).
+    fn run<N: Field>(&self, out: &mut T) -> Exact<N, ()>;
 }
 
 /// Runs the model compensated; if that cannot decide because of the range, in
@@ -267,34 +282,34 @@ pub(crate) trait Model<T> {
 /// formed without a quotient); and last in exact fractions, which decide
 /// everything: its undecided case is uninhabited.
 #[inline(never)]
-fn adaptive<T>(model: &impl Model<T>) -> (Result<T>, Stage) {
-    let settled = |result: Exact<Bounded, T>| match result {
-        Ok(v) => Some(Ok(v)),
+fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+    let settled = |result: Exact<Bounded, ()>| match result {
+        Ok(()) => Some(Ok(())),
         Err(Fail::Refused(e)) => Some(Err(e)),
         Err(Fail::Undecided(Undecided)) => None,
     };
-    let why = match model.run::<Compensated>() {
-        Ok(v) => return (Ok(v), Stage::Compensated),
+    let why = match model.run::<Compensated>(out) {
+        Ok(()) => return (Ok(()), Stage::Compensated),
         Err(Fail::Refused(e)) => return (Err(e), Stage::Compensated),
         Err(Fail::Undecided(why)) => why,
     };
     let double_double = match why {
-        Unsettled::Range => settled(model.run::<Bounded>()),
+        Unsettled::Range => settled(model.run::<Bounded>(out)),
         Unsettled::Close => None,
     };
-    let tracked = || match model.run::<Bounded<true>>() {
-        Ok(v) => Some(Ok(v)),
+    let tracked = || match model.run::<Bounded<true>>(out) {
+        Ok(()) => Some(Ok(())),
         Err(Fail::Refused(e)) => Some(Err(e)),
         Err(Fail::Undecided(Undecided)) => None,
     };
     if let Some(answer) = double_double.or_else(tracked) {
         return (answer, Stage::DoubleDouble);
     }
-    (decided(model.run::<Fraction>()), Stage::Rational)
+    (decided(model.run::<Fraction>(out)), Stage::Rational)
 }
 
 /// The rational pass's result: an answer or the model's refusal.
-fn decided<T>(result: std::result::Result<T, Fail<Infallible>>) -> Result<T> {
+fn decided(result: std::result::Result<(), Fail<Infallible>>) -> Result<()> {
     result.map_err(|fail| match fail {
         Fail::Refused(e) => e,
         Fail::Undecided(never) => match never {},

@@ -294,8 +294,8 @@ struct Rigid<'a> {
 
 impl Model<PlanarOutcome> for Rigid<'_> {
     #[inline(always)]
-    fn run<N: Field>(&self) -> Exact<N, PlanarOutcome> {
-        model::rigid::<N>(self.scene, &self.law, self.outputs)
+    fn run<N: Field>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+        model::rigid::<N>(self.scene, &self.law, self.outputs, out)
     }
 }
 
@@ -306,8 +306,8 @@ struct Point {
 
 impl Model<PlanarOutcome> for Point {
     #[inline(always)]
-    fn run<N: Field>(&self) -> Exact<N, PlanarOutcome> {
-        model::point_mass::<N>(&self.mass, self.outputs)
+    fn run<N: Field>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+        model::point_mass::<N>(&self.mass, self.outputs, out)
     }
 }
 
@@ -427,7 +427,8 @@ impl Case for PlanarImpact {
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
-    ) -> (Result<PlanarOutcome>, Stage) {
+        out: &mut PlanarOutcome,
+    ) -> (Result<()>, Stage) {
         let stage = match arithmetic {
             Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
             Arithmetic::Exact => Stage::Compensated,
@@ -436,7 +437,7 @@ impl Case for PlanarImpact {
         let refused = |e| (Err(e), stage);
         match self.body {
             PlanarBody::PointMass { mass } => match self.point_mass_inputs(mass) {
-                Ok(mass) => evaluate(arithmetic, in_range, Point { mass, outputs }),
+                Ok(mass) => evaluate(arithmetic, in_range, Point { mass, outputs }, out),
                 Err(e) => refused(e),
             },
             PlanarBody::Rigid { .. } => {
@@ -453,7 +454,7 @@ impl Case for PlanarImpact {
                     },
                 };
                 match self.law.validate() {
-                    Ok(law) => evaluate(arithmetic, in_range, Rigid { scene, law, outputs }),
+                    Ok(law) => evaluate(arithmetic, in_range, Rigid { scene, law, outputs }, out),
                     Err(e) => refused(e),
                 }
             }

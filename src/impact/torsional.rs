@@ -71,8 +71,8 @@ struct TorsionModel {
 
 impl Model<TorsionalOutcome> for TorsionModel {
     #[inline(always)]
-    fn run<N: Field>(&self) -> Exact<N, TorsionalOutcome> {
-        torsional::<N>(&self.torsion, self.energy)
+    fn run<N: Field>(&self, out: &mut TorsionalOutcome) -> Exact<N, ()> {
+        torsional::<N>(&self.torsion, self.energy, out)
     }
 }
 
@@ -168,7 +168,8 @@ impl Case for TorsionalImpact {
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
-    ) -> (Result<TorsionalOutcome>, Stage) {
+        out: &mut TorsionalOutcome,
+    ) -> (Result<()>, Stage) {
         match self.validate() {
             Ok(torsion) => evaluate(
                 arithmetic,
@@ -177,6 +178,7 @@ impl Case for TorsionalImpact {
                     torsion,
                     energy: outputs.energy,
                 },
+                out,
             ),
             Err(e) => (Err(e), Stage::Compensated),
         }

@@ -62,8 +62,10 @@ pub(crate) trait ContactSpace<N: Field> {
     fn creates_energy(&self, e: &N, mu: &N, work: &N, law: Input) -> ImpactError;
     /// The turn of two phases together.
     fn add_turns(a: &Self::Turn, b: &Self::Turn) -> Self::Turn;
-    /// The outcome of one answer (see [`Assembly`]).
-    fn assemble(&self, answer: &Assembly<'_, N, Self::Turn>) -> Exact<N, Self::Outcome>;
+    /// Writes the outcome of one answer (see [`Assembly`]) to `out`, whole
+    /// or not at all (written in place: a returned outcome would be copied
+    /// through every caller's result).
+    fn assemble(&self, answer: &Assembly<'_, N, Self::Turn>, out: &mut Self::Outcome) -> Exact<N, ()>;
 }
 
 /// One answer in the field: impulse parts, turn, final contact velocity, the
@@ -112,7 +114,8 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
     sc: &S,
     law: &Law,
     outputs: Outputs,
-) -> Exact<N, S::Outcome> {
+    out: &mut S::Outcome,
+) -> Exact<N, ()> {
     match *law {
         Law::Frictionless { restitution } => {
             let e = N::of(restitution);
@@ -126,6 +129,7 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
                 None,
                 outputs,
                 Input::Restitution,
+                out,
             )
         }
         Law::ImpulseRatio {
@@ -143,12 +147,21 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
                 None,
                 outputs,
                 Input::ImpulseRatio,
+                out,
             )
         }
         Law::Friction {
             restitution,
             friction,
-        } => bilinear(sc, &N::of(restitution), friction, 0.0, Regime::Sticking, outputs),
+        } => bilinear(
+            sc,
+            &N::of(restitution),
+            friction,
+            0.0,
+            Regime::Sticking,
+            outputs,
+            out,
+        ),
         Law::TangentialRestitution {
             restitution,
             friction,
@@ -160,12 +173,20 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
             tangential_restitution,
             Regime::Restitution,
             outputs,
+            out,
         ),
         Law::KineticRestitution {
             value,
             approach_impulse_ratio,
             rebound_impulse_ratio,
-        } => kinetic(sc, value, approach_impulse_ratio, rebound_impulse_ratio, outputs),
+        } => kinetic(
+            sc,
+            value,
+            approach_impulse_ratio,
+            rebound_impulse_ratio,
+            outputs,
+            out,
+        ),
     }
 }
 
@@ -289,7 +310,8 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     et: f64,
     capped: Regime,
     outputs: Outputs,
-) -> Exact<N, S::Outcome> {
+    out: &mut S::Outcome,
+) -> Exact<N, ()> {
     let qn = normal_target(sc, e);
     let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
     // For e_t = 0 the target ratio is the critical ratio μ_c itself.
@@ -310,6 +332,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
                 known_critical,
                 outputs,
                 Input::Friction,
+                out,
             );
         }
     }
@@ -333,6 +356,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
         known_critical,
         outputs,
         Input::Friction,
+        out,
     )
 }
 
@@ -345,7 +369,8 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
     mu_a: f64,
     mu_r: f64,
     outputs: Outputs,
-) -> Exact<N, S::Outcome> {
+    out: &mut S::Outcome,
+) -> Exact<N, ()> {
     let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachImpulseRatio)?;
     let rebound = if r > 0.0 {
         Some(positive_coefficient(sc, mu_r, Input::ReboundImpulseRatio)?)
@@ -389,6 +414,7 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
         None,
         outputs,
         Input::KineticRestitution,
+        out,
     )
 }
 
@@ -407,7 +433,8 @@ fn finish<N: Field, S: ContactSpace<N>>(
     known_critical: Option<Option<N>>,
     outputs: Outputs,
     law: Input,
-) -> Exact<N, S::Outcome> {
+    out: &mut S::Outcome,
+) -> Exact<N, ()> {
     let mu = a.mu.as_ref().ok_or(ImpactError::OutputNotFinite {
         output: Output::ImpulseRatio,
     })?;
@@ -420,16 +447,19 @@ fn finish<N: Field, S: ContactSpace<N>>(
         None if outputs.critical_impulse_ratio => Some(critical_ratio(sc, &a.qn)?),
         _ => None,
     };
-    sc.assemble(&Assembly {
-        e,
-        kinetic_restitution,
-        regime,
-        answer: a,
-        mu,
-        work,
-        critical,
-        outputs,
-    })
+    sc.assemble(
+        &Assembly {
+            e,
+            kinetic_restitution,
+            regime,
+            answer: a,
+            mu,
+            work,
+            critical,
+            outputs,
+        },
+        out,
+    )
 }
 
 /// `μ_c` as an output (`None` when not asked for), refused when its `Δn = 0`.

@@ -200,7 +200,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     /// impulses (Kelvin and Tait, as in the Appendix), which never subtracts
     /// two nearly equal energies.
     #[inline(always)]
-    fn assemble(&self, x: &Assembly<'_, N, N>) -> Exact<N, PlanarOutcome> {
+    fn assemble(&self, x: &Assembly<'_, N, N>, outcome: &mut PlanarOutcome) -> Exact<N, ()> {
         let a = x.answer;
         let e = x.e;
         let w = self.w.add(&a.turn);
@@ -255,7 +255,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
                 fused.tangential
             },
         };
-        Ok(PlanarOutcome {
+        *outcome = PlanarOutcome {
             final_velocity,
             contact_velocity: ContactVelocities {
                 initial,
@@ -268,7 +268,8 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
             kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution),
             regime: x.regime,
             energy,
-        })
+        };
+        Ok(())
     }
 }
 
@@ -312,8 +313,13 @@ impl<N: Field> Scene<'_, N> {
 
 /// A planar impact of a rigid body in the field `N`, in a validated scene
 /// under a validated law.
-pub(crate) fn rigid<N: Field>(scene: &PlanarScene, law: &Law, outputs: Outputs) -> Exact<N, PlanarOutcome> {
-    under_law(&Scene::<N>::new(scene), law, outputs)
+pub(crate) fn rigid<N: Field>(
+    scene: &PlanarScene,
+    law: &Law,
+    outputs: Outputs,
+    out: &mut PlanarOutcome,
+) -> Exact<N, ()> {
+    under_law(&Scene::<N>::new(scene), law, outputs, out)
 }
 
 /// The validated inputs of a point-mass impact: `m > 0`, `v_n < 0`, `e ∈ [0, 1]`.
@@ -328,7 +334,11 @@ pub(crate) struct PointMass {
 /// A point mass (section 2.1): `V_n = −e v_n`, `P_n = m (1 + e)(−v_n)`, `V_t = v_t`;
 /// `μ_c = v_t / ((1 + e) v_n)`, the limit of Eq 14 for `k → ∞`; `T_M` is the
 /// whole initial energy (the mass stops), `T_L = ½ m (1 − e)(1 + e) v_n²`.
-pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<N, PlanarOutcome> {
+pub(crate) fn point_mass<N: Field>(
+    p: &PointMass,
+    outputs: Outputs,
+    outcome: &mut PlanarOutcome,
+) -> Exact<N, ()> {
     let PointMass { mass, vn, vt, e } = *p;
     let (m, vn_n, vt_n, e_n) = (N::of(mass), N::of(vn), N::of(vt), N::of(e));
     let one = N::of(1.0);
@@ -359,7 +369,7 @@ pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<N, 
     } else {
         None
     };
-    Ok(PlanarOutcome {
+    *outcome = PlanarOutcome {
         final_velocity: PlanarVelocity {
             normal: final_normal,
             tangential: vt + 0.0,
@@ -385,5 +395,6 @@ pub(crate) fn point_mass<N: Field>(p: &PointMass, outputs: Outputs) -> Exact<N, 
         kinetic_restitution: e + 0.0,
         regime: Regime::Frictionless,
         energy,
-    })
+    };
+    Ok(())
 }

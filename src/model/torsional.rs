@@ -32,7 +32,7 @@ pub(crate) struct Torsion {
 /// The torsional model in the field `N`. The change `ω_n − Ω_n` and the sum
 /// `ω_n + Ω_n` are each formed from their branch's formula, so the loss
 /// `½ I_n (ω_n − Ω_n)(ω_n + Ω_n)` never subtracts two nearly equal energies.
-pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool) -> Exact<N, TorsionalOutcome> {
+pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut TorsionalOutcome) -> Exact<N, ()> {
     let one = N::of(1.0);
     let (m, i_n, vn, w, e, ez) = (
         N::of(v.m),
@@ -74,7 +74,7 @@ pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool) -> Exact<N, Torsion
     } else {
         None
     };
-    Ok(TorsionalOutcome {
+    *outcome = TorsionalOutcome {
         final_normal_velocity: out(Output::FinalNormalVelocity, &e.mul(&vn).neg())?,
         final_spin: out(Output::FinalSpin, &spin)?,
         normal_impulse: out(Output::NormalImpulse, &m.mul(&qn))?,
@@ -82,5 +82,6 @@ pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool) -> Exact<N, Torsion
         regime,
         switch_spin: out(Output::SwitchSpin, &switch)?,
         energy,
-    })
+    };
+    Ok(())
 }

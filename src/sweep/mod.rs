@@ -229,7 +229,8 @@ impl<C: Case> SweepCase for CaseSweep<C> {
 
     #[inline]
     fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
-        let outcome = self.solver.solve(point)?;
+        let mut outcome = C::Outcome::default();
+        self.solver.solve_into(point, &mut outcome)?;
         for (cell, &column) in cells.iter_mut().zip(&self.columns) {
             *cell = C::output(&outcome, column);
         }
