@@ -108,6 +108,12 @@ pub enum ImpactError {
         /// Impulse ratios that would be admissible.
         admissible: AdmissibleInterval,
     },
+    /// A direction that is the zero vector (a contact normal).
+    #[error("{input} must not be the zero vector")]
+    ZeroVector {
+        /// The offending input.
+        input: Input,
+    },
     /// An output's exact value does not fit in a finite f64.
     #[error("the output {output} is not representable as a finite double for these inputs")]
     OutputNotFinite {
@@ -124,6 +130,7 @@ impl ImpactError {
             | ImpactError::NotPositive { input, .. }
             | ImpactError::OutOfRange { input, .. }
             | ImpactError::NeedsInertia { input }
+            | ImpactError::ZeroVector { input }
             | ImpactError::NotApproaching { input, .. }
             | ImpactError::NoImpulseSolution { input, .. }
             | ImpactError::CreatesEnergy { input, .. } => Some(*input),
@@ -146,6 +153,7 @@ impl ImpactError {
             ImpactError::NotPositive { .. } => "Input must be positive",
             ImpactError::OutOfRange { .. } => "Input out of range",
             ImpactError::NeedsInertia { .. } => "Input needs a moment of inertia",
+            ImpactError::ZeroVector { .. } => "Direction is zero",
             ImpactError::NotApproaching { .. } => "Contact is not approaching",
             ImpactError::NoImpulseSolution { .. } => "No impulse solution",
             ImpactError::CreatesEnergy { .. } => "Answer would create energy",
@@ -160,6 +168,7 @@ impl ImpactError {
             ImpactError::NotPositive { .. } => "not-positive",
             ImpactError::OutOfRange { .. } => "out-of-range",
             ImpactError::NeedsInertia { .. } => "needs-inertia",
+            ImpactError::ZeroVector { .. } => "zero-vector",
             ImpactError::NotApproaching { .. } => "not-approaching",
             ImpactError::NoImpulseSolution { .. } => "no-impulse-solution",
             ImpactError::CreatesEnergy { .. } => "creates-energy",

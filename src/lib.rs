@@ -48,6 +48,11 @@ pub mod sweep;
 pub mod http;
 
 pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
-pub use impact::{Case, Law, PlanarBody, PlanarImpact, Precision, TorsionalImpact, solve};
-pub use outcome::{Outputs, PlanarOutcome, Regime, TorsionalOutcome};
+pub use impact::{
+    BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, TorsionalImpact,
+    solve,
+};
+pub use outcome::{
+    BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, TorsionalOutcome, WorldImpulse,
+};
 pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};

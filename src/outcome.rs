@@ -177,3 +177,56 @@ impl Outputs {
         }
     }
 }
+
+/// What one body of a contact in world axes answers.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BodyOutcome {
+    /// Final velocity of the mass centre `(V_x, V_y)`.
+    pub velocity: [f64; 2],
+    /// Final angular velocity `Ω` (counter-clockwise positive).
+    pub angular_velocity: f64,
+    /// `ΔV = V − v`.
+    pub velocity_change: [f64; 2],
+    /// `|ΔV|`, the delta-V of accident reconstruction.
+    pub delta_v: f64,
+    /// `ΔΩ = Ω − ω`.
+    pub angular_velocity_change: f64,
+}
+
+/// The impulse on body A (`−P` acts on B).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WorldImpulse {
+    /// `P_n = P·n̂ ≥ 0`.
+    pub normal: f64,
+    /// `P_t = P·t̂`, `t̂ = ẑ × n̂`.
+    pub tangential: f64,
+    /// World x of `P`.
+    pub x: f64,
+    /// World y of `P`.
+    pub y: f64,
+}
+
+/// The outcome of a planar contact between body A and body B or a barrier.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BodiesOutcome {
+    /// Body A, and body B when there is one.
+    pub bodies: [BodyOutcome; 2],
+    /// 1 (a barrier) or 2.
+    pub body_count: usize,
+    /// Relative contact velocity `u = u_A − u_B` along `n̂` and `t̂`, initial and final.
+    pub contact_velocity: ContactVelocities,
+    /// The impulse on A.
+    pub impulse: WorldImpulse,
+    /// `μ = P_t / P_n`.
+    pub impulse_ratio: f64,
+    /// `μ_c`, the ratio of the sticking impulse, when asked for or needed by the law.
+    pub critical_impulse_ratio: Option<f64>,
+    /// `e` (the equivalent `e` under the kinetic law).
+    pub restitution: f64,
+    /// `R` (`e` under the kinematic law).
+    pub kinetic_restitution: f64,
+    /// The branch of the law that answered.
+    pub regime: Regime,
+    /// Energies of the pair, when asked for.
+    pub energy: Option<PlanarEnergy>,
+}

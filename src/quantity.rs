@@ -93,6 +93,46 @@ quantities! {
         TorsionalFriction => ("μ_z", "torsional friction coefficient", "/torsion/friction"),
         /// Pitch radius `ρ_p` of the torsional friction impulse.
         PitchRadius => ("ρ_p", "pitch radius", "/torsion/pitch_radius"),
+        /// Mass of body A.
+        MassA => ("m_A", "mass of body A", "/bodies/0/mass"),
+        /// Moment of inertia of body A about its mass centre.
+        InertiaA => ("I_A", "moment of inertia of body A", "/bodies/0/inertia"),
+        /// x of body A's mass centre.
+        PositionAX => ("x_A", "x of body A", "/bodies/0/position/x"),
+        /// y of body A's mass centre.
+        PositionAY => ("y_A", "y of body A", "/bodies/0/position/y"),
+        /// Initial x velocity of body A.
+        VelocityAX => ("v_Ax", "x velocity of body A", "/bodies/0/velocity/x"),
+        /// Initial y velocity of body A.
+        VelocityAY => ("v_Ay", "y velocity of body A", "/bodies/0/velocity/y"),
+        /// Initial angular velocity of body A.
+        AngularVelocityA => ("ω_A", "angular velocity of body A", "/bodies/0/angular_velocity"),
+        /// Mass of body B.
+        MassB => ("m_B", "mass of body B", "/bodies/1/mass"),
+        /// Moment of inertia of body B about its mass centre.
+        InertiaB => ("I_B", "moment of inertia of body B", "/bodies/1/inertia"),
+        /// x of body B's mass centre.
+        PositionBX => ("x_B", "x of body B", "/bodies/1/position/x"),
+        /// y of body B's mass centre.
+        PositionBY => ("y_B", "y of body B", "/bodies/1/position/y"),
+        /// Initial x velocity of body B.
+        VelocityBX => ("v_Bx", "x velocity of body B", "/bodies/1/velocity/x"),
+        /// Initial y velocity of body B.
+        VelocityBY => ("v_By", "y velocity of body B", "/bodies/1/velocity/y"),
+        /// Initial angular velocity of body B.
+        AngularVelocityB => ("ω_B", "angular velocity of body B", "/bodies/1/angular_velocity"),
+        /// x of the contact point.
+        ContactX => ("x_C", "x of the contact point", "/contact/point/x"),
+        /// y of the contact point.
+        ContactY => ("y_C", "y of the contact point", "/contact/point/y"),
+        /// x of the contact normal (from B into A).
+        NormalX => ("n_x", "x of the contact normal", "/contact/normal/x"),
+        /// y of the contact normal.
+        NormalY => ("n_y", "y of the contact normal", "/contact/normal/y"),
+        /// Body A's velocity as a whole (the approach a refusal names).
+        VelocityA => ("v_A", "velocity of body A", "/bodies/0/velocity"),
+        /// The contact normal as a whole.
+        Normal => ("n", "contact normal", "/contact/normal"),
     }
 }
 
@@ -149,6 +189,38 @@ quantities! {
         MaxEnergyLoss => ("T_M", "maximum energy loss", "/energy/max_loss"),
         /// Normalised energy loss `T_L* = T_L / T_M`.
         NormalizedEnergyLoss => ("T_L*", "normalized energy loss", "/energy/normalized_loss"),
+        /// World x of the impulse on A.
+        ImpulseX => ("P_x", "x impulse", "/impulse/x"),
+        /// World y of the impulse on A.
+        ImpulseY => ("P_y", "y impulse", "/impulse/y"),
+        /// Final x velocity of body A.
+        FinalVelocityAX => ("V_Ax", "final x velocity of body A", "/bodies/0/velocity/x"),
+        /// Final y velocity of body A.
+        FinalVelocityAY => ("V_Ay", "final y velocity of body A", "/bodies/0/velocity/y"),
+        /// Final angular velocity of body A.
+        FinalAngularVelocityA => ("Ω_A", "final angular velocity of body A", "/bodies/0/angular_velocity"),
+        /// x velocity change of body A.
+        VelocityChangeAX => ("ΔV_Ax", "x velocity change of body A", "/bodies/0/velocity_change/x"),
+        /// y velocity change of body A.
+        VelocityChangeAY => ("ΔV_Ay", "y velocity change of body A", "/bodies/0/velocity_change/y"),
+        /// Delta-V of body A, `|ΔV_A|`.
+        DeltaVA => ("|ΔV_A|", "delta-V of body A", "/bodies/0/delta_v"),
+        /// Angular velocity change of body A.
+        AngularVelocityChangeA => ("ΔΩ_A", "angular velocity change of body A", "/bodies/0/angular_velocity_change"),
+        /// Final x velocity of body B.
+        FinalVelocityBX => ("V_Bx", "final x velocity of body B", "/bodies/1/velocity/x"),
+        /// Final y velocity of body B.
+        FinalVelocityBY => ("V_By", "final y velocity of body B", "/bodies/1/velocity/y"),
+        /// Final angular velocity of body B.
+        FinalAngularVelocityB => ("Ω_B", "final angular velocity of body B", "/bodies/1/angular_velocity"),
+        /// x velocity change of body B.
+        VelocityChangeBX => ("ΔV_Bx", "x velocity change of body B", "/bodies/1/velocity_change/x"),
+        /// y velocity change of body B.
+        VelocityChangeBY => ("ΔV_By", "y velocity change of body B", "/bodies/1/velocity_change/y"),
+        /// Delta-V of body B, `|ΔV_B|`.
+        DeltaVB => ("|ΔV_B|", "delta-V of body B", "/bodies/1/delta_v"),
+        /// Angular velocity change of body B.
+        AngularVelocityChangeB => ("ΔΩ_B", "angular velocity change of body B", "/bodies/1/angular_velocity_change"),
     }
 }
 

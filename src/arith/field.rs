@@ -49,6 +49,70 @@ pub(crate) trait Field: Clone {
     fn round(&self) -> Result<f64, Self::Undecided>;
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;
+    /// `x √y` (`y ≥ 0`) correctly rounded: the exact fields decide it from
+    /// `z = x² y` by comparing `z` with the squares of the midpoints around a
+    /// candidate (ties to even), after scaling `z` by a power of four into
+    /// the middle of the range (a result below the normal range is rounded
+    /// twice, there).
+    fn round_times_sqrt(&self, y: &Self) -> Result<f64, Self::Undecided> {
+        let negative = match self.sign()? {
+            Ordering::Equal => return Ok(0.0),
+            sign => sign == Ordering::Less,
+        };
+        if y.sign()? == Ordering::Equal {
+            return Ok(0.0);
+        }
+        let mut z = self.mul(self).mul(y);
+        let mut scale = 1.0;
+        let mut rounded = z.round()?;
+        for _ in 0..64 {
+            if rounded > 2f64.powi(600) {
+                z = z.mul(&Self::of(2f64.powi(-1000)));
+                scale *= 2f64.powi(500);
+            } else if rounded < 2f64.powi(-600) {
+                z = z.mul(&Self::of(2f64.powi(1000)));
+                scale *= 2f64.powi(-500);
+            } else {
+                break;
+            }
+            rounded = z.round()?;
+        }
+        let half = Self::of(0.5);
+        let above = |a: f64, b: f64| -> Result<Ordering, Self::Undecided> {
+            let mid = Self::of(a).add(&Self::of(b)).mul(&half);
+            z.sub(&mid.mul(&mid)).sign()
+        };
+        let mut s = rounded.sqrt();
+        for _ in 0..4 {
+            let up = s.next_up();
+            match above(s, up)? {
+                Ordering::Greater => {
+                    s = up;
+                    continue;
+                }
+                Ordering::Equal => {
+                    if s.to_bits() & 1 == 1 {
+                        s = up;
+                    }
+                    break;
+                }
+                Ordering::Less => {}
+            }
+            let down = s.next_down();
+            match above(down, s)? {
+                Ordering::Less => s = down,
+                Ordering::Equal => {
+                    if s.to_bits() & 1 == 1 {
+                        s = down;
+                    }
+                    break;
+                }
+                Ordering::Greater => break,
+            }
+        }
+        let v = s * scale;
+        Ok(if negative { -v } else { v })
+    }
 }
 
 impl Field for Compensated {
@@ -153,6 +217,10 @@ impl Field for f64 {
         } else {
             Err(OutOfRange)
         }
+    }
+    #[inline(always)]
+    fn round_times_sqrt(&self, y: &Self) -> Result<f64, OutOfRange> {
+        Field::round(&(self * y.sqrt()))
     }
     fn approx(&self) -> f64 {
         *self

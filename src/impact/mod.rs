@@ -22,12 +22,14 @@
 //! read each output from its outcome; sweeps and the HTTP layer derive their
 //! axes, columns and pointers from that.
 
+mod bodies;
 mod planar;
 mod torsional;
 
 use std::convert::Infallible;
 use std::fmt;
 
+pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
 pub use self::planar::{Law, PlanarBody, PlanarImpact};
 pub use self::torsional::TorsionalImpact;
 use crate::arith::{Bounded, Compensated, Field, Fraction, OutOfRange, Undecided, Unsettled};

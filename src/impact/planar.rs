@@ -58,7 +58,7 @@ pub enum Law {
 
 impl Law {
     /// The law's coefficients checked in range, in request order.
-    fn validate(&self) -> Result<Law> {
+    pub(super) fn validate(&self) -> Result<Law> {
         let e = |e| in_range(Input::Restitution, e, 0.0, 1.0);
         let f = |f| in_range(Input::Friction, f, 0.0, f64::INFINITY);
         Ok(match *self {
@@ -107,7 +107,7 @@ impl Law {
 
     /// The slot of a coefficient this law reads.
     #[inline]
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
+    pub(super) fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
         match (self, input) {
             (
                 Law::Frictionless { restitution }
@@ -402,7 +402,25 @@ impl Case for PlanarImpact {
             Output::EnergyLoss => energy.map_or(f64::NAN, |e| e.loss),
             Output::MaxEnergyLoss => energy.map_or(f64::NAN, |e| e.max_loss),
             Output::NormalizedEnergyLoss => energy.map_or(f64::NAN, |e| e.normalized_loss),
-            Output::FinalSpin | Output::TorsionalImpulse | Output::SwitchSpin => f64::NAN,
+            Output::FinalSpin
+            | Output::TorsionalImpulse
+            | Output::SwitchSpin
+            | Output::ImpulseX
+            | Output::ImpulseY
+            | Output::FinalVelocityAX
+            | Output::FinalVelocityAY
+            | Output::FinalAngularVelocityA
+            | Output::VelocityChangeAX
+            | Output::VelocityChangeAY
+            | Output::DeltaVA
+            | Output::AngularVelocityChangeA
+            | Output::FinalVelocityBX
+            | Output::FinalVelocityBY
+            | Output::FinalAngularVelocityB
+            | Output::VelocityChangeBX
+            | Output::VelocityChangeBY
+            | Output::DeltaVB
+            | Output::AngularVelocityChangeB => f64::NAN,
         })
     }
 

@@ -124,7 +124,27 @@ impl Case for TorsionalImpact {
             | Input::TangentialRestitution
             | Input::KineticRestitution
             | Input::ApproachImpulseRatio
-            | Input::ReboundImpulseRatio => return None,
+            | Input::ReboundImpulseRatio
+            | Input::MassA
+            | Input::InertiaA
+            | Input::PositionAX
+            | Input::PositionAY
+            | Input::VelocityAX
+            | Input::VelocityAY
+            | Input::AngularVelocityA
+            | Input::MassB
+            | Input::InertiaB
+            | Input::PositionBX
+            | Input::PositionBY
+            | Input::VelocityBX
+            | Input::VelocityBY
+            | Input::AngularVelocityB
+            | Input::ContactX
+            | Input::ContactY
+            | Input::NormalX
+            | Input::NormalY
+            | Input::VelocityA
+            | Input::Normal => return None,
         })
     }
 
@@ -156,7 +176,23 @@ impl Case for TorsionalImpact {
             | Output::Restitution
             | Output::KineticRestitution
             | Output::MaxEnergyLoss
-            | Output::NormalizedEnergyLoss => f64::NAN,
+            | Output::NormalizedEnergyLoss
+            | Output::ImpulseX
+            | Output::ImpulseY
+            | Output::FinalVelocityAX
+            | Output::FinalVelocityAY
+            | Output::FinalAngularVelocityA
+            | Output::VelocityChangeAX
+            | Output::VelocityChangeAY
+            | Output::DeltaVA
+            | Output::AngularVelocityChangeA
+            | Output::FinalVelocityBX
+            | Output::FinalVelocityBY
+            | Output::FinalAngularVelocityB
+            | Output::VelocityChangeBX
+            | Output::VelocityChangeBY
+            | Output::DeltaVB
+            | Output::AngularVelocityChangeB => f64::NAN,
         })
     }
 

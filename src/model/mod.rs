@@ -15,6 +15,7 @@
 //! A physics change goes here, once; [`crate::impact`] validates the inputs
 //! and chooses the arithmetic.
 
+pub(crate) mod bodies;
 pub(crate) mod contact;
 pub(crate) mod planar;
 pub(crate) mod torsional;
@@ -63,6 +64,17 @@ pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
 #[inline(always)]
 pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
     let v = x.round().map_err(Fail::Undecided)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(ImpactError::OutputNotFinite { output }.into())
+    }
+}
+
+/// `x √y` correctly rounded, or its refusal beyond the f64 range.
+#[inline(always)]
+pub(crate) fn out_times_sqrt<N: Field>(output: Output, x: &N, y: &N) -> Exact<N, f64> {
+    let v = x.round_times_sqrt(y).map_err(Fail::Undecided)?;
     if v.is_finite() {
         Ok(v)
     } else {

@@ -1,0 +1,367 @@
+//! One point contact between two laminae, or one against a fixed barrier, in
+//! world axes: the general planar contact whose special case is the paper's
+//! one body against a barrier (`planar.rs`).
+//!
+//! Each body `b` has mass `m_b`, inertia `I_b` about its mass centre `G_b`,
+//! velocity `v_b` and angular velocity `ω_b`; the contact is a point `C` and a
+//! normal `n` from B into A, not necessarily of unit length. With
+//! `r_b = C − G_b`, `t = ẑ × n` and `N = [n t]`, the impulse on A is
+//! `P = N q` (and `−P` on B) and the relative contact velocity in the
+//! unnormalised frame is `ũ = Nᵀ u`; then `Δũ = W̃ q` with
+//!
+//! ```text
+//! W̃ = α 1 + Σ_b ρ_b ρ_bᵀ / I_b,   α = |n|² Σ_b 1/m_b,   ρ_b = (r_b × n, r_b · n),
+//! ```
+//!
+//! which is `|n|²` times the contact-space `W` of `ΔU = W P`. No square root
+//! enters the laws: impulse ratios, decisions and energies are rational in the
+//! inputs, and only outputs along `n̂ = n/|n|` (contact velocities, `P_n`,
+//! `P_t`) and the magnitudes `|ΔV|` are `x √y`, rounded as such.
+//!
+//! For one body against a barrier with `n = x̂` and `r_A = −(d_d, d_c)` this
+//! is `W̃ = W` of `planar.rs` divided by `m k²`; the laws (`contact.rs`) are the same code.
+
+use std::cmp::Ordering;
+
+use super::contact::{Assembly, ContactSpace, critical_output, under_law};
+use super::{Exact, half, out, out_times_sqrt, sign};
+use crate::arith::Field;
+use crate::error::{ImpactError, Input, Output};
+use crate::impact::{BodiesImpact, Lamina};
+use crate::outcome::{BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, PlanarEnergy, WorldImpulse};
+use crate::scene::ContactVelocity;
+
+/// One body in the field: its inputs, `1/m`, `1/I`, `r = C − G` and `ρ`.
+struct Body<N> {
+    m: N,
+    inertia: N,
+    inv_m: N,
+    inv_i: N,
+    v: [N; 2],
+    w: N,
+    /// `(r × n, r · n)`.
+    rho: [N; 2],
+}
+
+/// The relative normal contact velocity `ũ_n = (u_A − u_B) · n`, with
+/// `u_b = v_b + ω_b ẑ × r_b`: the same operations in every field, so the f64
+/// value the fast evaluation decides on is the one validation checked.
+#[inline(always)]
+pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
+    let n = [N::of(impact.contact.normal[0]), N::of(impact.contact.normal[1])];
+    let c = [N::of(impact.contact.point[0]), N::of(impact.contact.point[1])];
+    let mut un = body_normal_velocity(&impact.a, &c, &n);
+    if let Some(b) = &impact.b {
+        un = un.sub(&body_normal_velocity(b, &c, &n));
+    }
+    un
+}
+
+/// `u_b · n` of one body.
+#[inline(always)]
+fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
+    let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
+    let w = N::of(l.angular_velocity);
+    // u = (v_x − ω r_y, v_y + ω r_x)
+    let ux = w.neg().mul_add(&r[1], &N::of(l.velocity[0]));
+    let uy = w.mul_add(&r[0], &N::of(l.velocity[1]));
+    ux.mul_add(&n[0], &uy.mul(&n[1]))
+}
+
+/// A validated contact in the field: its contact space and its bodies.
+struct Scene<N> {
+    n: [N; 2],
+    /// `|n|²`.
+    nn: N,
+    bodies: Vec<Body<N>>,
+    un: N,
+    ut: N,
+    s: N,
+    alpha: N,
+    wnn: N,
+    wnt: N,
+    wtt: N,
+    inv_det: N,
+}
+
+impl<N: Field> Scene<N> {
+    fn new(fast: &BodiesImpact) -> Self {
+        let n = [N::of(fast.contact.normal[0]), N::of(fast.contact.normal[1])];
+        let c = [N::of(fast.contact.point[0]), N::of(fast.contact.point[1])];
+        let nn = n[0].mul_add(&n[0], &n[1].mul(&n[1]));
+        let t = [n[1].neg(), n[0].clone()];
+        let one = N::of(1.0);
+        let mut ut = N::of(0.0);
+        let mut bodies = Vec::with_capacity(2);
+        for (k, l) in std::iter::once(&fast.a).chain(fast.b.as_ref()).enumerate() {
+            let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
+            let w = N::of(l.angular_velocity);
+            let v = [N::of(l.velocity[0]), N::of(l.velocity[1])];
+            let ux = w.neg().mul_add(&r[1], &v[0]);
+            let uy = w.mul_add(&r[0], &v[1]);
+            let but = ux.mul_add(&t[0], &uy.mul(&t[1]));
+            ut = if k == 0 { but } else { ut.sub(&but) };
+            let m = N::of(l.mass);
+            let inertia = N::of(l.inertia);
+            bodies.push(Body {
+                inv_m: one.div(&m),
+                inv_i: one.div(&inertia),
+                rho: [
+                    r[0].mul_add(&n[1], &r[1].mul(&n[0]).neg()),
+                    r[0].mul_add(&n[0], &r[1].mul(&n[1])),
+                ],
+                m,
+                inertia,
+                v,
+                w,
+            });
+        }
+        let un = approach::<N>(fast);
+        let mut inv_mass = bodies[0].inv_m.clone();
+        let mut wnn = N::of(0.0);
+        let mut wnt = N::of(0.0);
+        let mut wtt = N::of(0.0);
+        let mut spread = N::of(0.0);
+        for (k, b) in bodies.iter().enumerate() {
+            if k > 0 {
+                inv_mass = inv_mass.add(&b.inv_m);
+            }
+            let [rn, rt] = &b.rho;
+            wnn = wnn.add(&rn.mul(rn).mul(&b.inv_i));
+            wnt = wnt.add(&rn.mul(rt).mul(&b.inv_i));
+            wtt = wtt.add(&rt.mul(rt).mul(&b.inv_i));
+            spread = spread.add(&rn.mul_add(rn, &rt.mul(rt)).mul(&b.inv_i));
+        }
+        let alpha = nn.mul(&inv_mass);
+        // det W̃ = α (α + Σ |ρ_b|²/I_b) + (ρ_A × ρ_B)² / (I_A I_B): a sum of
+        // non-negative terms, never a difference of nearly equal products.
+        let mut det = alpha.mul(&alpha.add(&spread));
+        if let [a, b] = &bodies[..] {
+            let cross = a.rho[0].mul_add(&b.rho[1], &a.rho[1].mul(&b.rho[0]).neg());
+            det = det.add(&cross.mul(&cross).mul(&a.inv_i).mul(&b.inv_i));
+        }
+        Scene {
+            s: un.neg(),
+            un,
+            ut,
+            wnn: alpha.add(&wnn),
+            wnt,
+            wtt: alpha.add(&wtt),
+            inv_det: one.div(&det),
+            alpha,
+            nn,
+            n,
+            bodies,
+        }
+    }
+
+    /// `ũ_n / |n|` and friends: `x / |n|` correctly rounded.
+    #[inline(always)]
+    fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
+        out_times_sqrt(output, &x.div(&self.nn), &self.nn)
+    }
+
+    /// The energies of the pair: `T = Σ ½ m v² + ½ I ω²`, the loss `−½ q·(ũ + Ũ)`
+    /// (the work of the impulse), and `T_M = ½ ũᵀ W̃⁻¹ ũ` formed from
+    /// `adj W̃ = α 1 + Σ ρ⊥ρ⊥ᵀ/I_b` as `½ [α |ũ|² + Σ (ρ_t ũ_n − ρ_n ũ_t)²/I_b] / det`.
+    fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
+        let h = half::<N>();
+        let mut initial = N::of(0.0);
+        let mut adjugate = self.alpha.mul(&self.un.mul_add(&self.un, &self.ut.mul(&self.ut)));
+        for b in &self.bodies {
+            let linear = b.v[0].mul_add(&b.v[0], &b.v[1].mul(&b.v[1])).mul(&b.m);
+            initial = initial.add(&h.mul(&b.inertia.mul(&b.w).mul_add(&b.w, &linear)));
+            let lever = b.rho[1].mul_add(&self.un, &b.rho[0].mul(&self.ut).neg());
+            adjugate = adjugate.add(&lever.mul(&lever).mul(&b.inv_i));
+        }
+        let loss = h.mul(work).neg();
+        let max_loss = h.mul(&adjugate).mul(&self.inv_det);
+        // The clamps only act on f64 roundings: the exact values satisfy them.
+        Ok(PlanarEnergy {
+            initial: out(Output::InitialEnergy, &initial)?,
+            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?.max(0.0),
+            loss: out(Output::EnergyLoss, &loss)?,
+            max_loss: out(Output::MaxEnergyLoss, &max_loss)?,
+            normalized_loss: out(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?.min(1.0),
+        })
+    }
+}
+
+/// The outputs of each body, in response order.
+const BODY_OUTPUTS: [[Output; 7]; 2] = [
+    [
+        Output::FinalVelocityAX,
+        Output::FinalVelocityAY,
+        Output::FinalAngularVelocityA,
+        Output::VelocityChangeAX,
+        Output::VelocityChangeAY,
+        Output::DeltaVA,
+        Output::AngularVelocityChangeA,
+    ],
+    [
+        Output::FinalVelocityBX,
+        Output::FinalVelocityBY,
+        Output::FinalAngularVelocityB,
+        Output::VelocityChangeBX,
+        Output::VelocityChangeBY,
+        Output::DeltaVB,
+        Output::AngularVelocityChangeB,
+    ],
+];
+
+impl<N: Field> ContactSpace<N> for Scene<N> {
+    /// The spins follow from `q` at assembly.
+    type Turn = ();
+    type Outcome = BodiesOutcome;
+
+    #[inline(always)]
+    fn un(&self) -> &N {
+        &self.un
+    }
+    #[inline(always)]
+    fn ut(&self) -> &N {
+        &self.ut
+    }
+    #[inline(always)]
+    fn s(&self) -> &N {
+        &self.s
+    }
+    #[inline(always)]
+    fn wnn(&self) -> &N {
+        &self.wnn
+    }
+    #[inline(always)]
+    fn wnt(&self) -> &N {
+        &self.wnt
+    }
+    #[inline(always)]
+    fn wtt(&self) -> &N {
+        &self.wtt
+    }
+    #[inline(always)]
+    fn ratio_coefficient(&self, mu: f64) -> (N, ()) {
+        (N::of(mu).mul_add(&self.wnt, &self.wnn), ())
+    }
+    /// `D(μ) = (A + μ B) / α`: the one-body `D` for a barrier.
+    fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError {
+        ImpactError::NoImpulseSolution {
+            input: law,
+            impulse_ratio: mu,
+            d: self.ratio_coefficient(mu).0.div(&self.alpha).approx(),
+        }
+    }
+    #[inline(always)]
+    fn ratio_normal(&self, _qn: &N, per: &N) -> N {
+        per.clone()
+    }
+    #[inline(always)]
+    fn ratio_turn(&self, _lever: &(), _per: &N) {}
+    #[inline(always)]
+    fn inv_det(&self) -> &N {
+        &self.inv_det
+    }
+    #[inline(always)]
+    fn target_normal(&self, _qn: &N, sdn: &N, inv_det: &N) -> N {
+        sdn.mul(inv_det)
+    }
+    #[inline(always)]
+    fn target_turn(&self, _qn: &N, _qt: &N, _inv_det: &N) {}
+    fn creates_energy(&self, e: &N, mu: &N, work: &N, law: Input) -> ImpactError {
+        ImpactError::CreatesEnergy {
+            input: law,
+            impulse_ratio: mu.approx(),
+            energy_loss: -0.5 * work.approx(),
+            admissible: crate::scene::admissible_interval(
+                [self.wnn.approx(), self.wnt.approx(), self.wtt.approx()],
+                self.s.approx(),
+                self.ut.approx(),
+                e.approx(),
+            ),
+        }
+    }
+    #[inline(always)]
+    fn add_turns(_a: &(), _b: &()) {}
+
+    fn assemble(&self, x: &Assembly<'_, N, ()>, outcome: &mut BodiesOutcome) -> Exact<N, ()> {
+        let a = x.answer;
+        let (qn, qt) = (&a.dn, &a.dt);
+        let [nx, ny] = &self.n;
+        // P = q_n n + q_t t, t = (−n_y, n_x).
+        let p = [nx.mul_add(qn, &ny.mul(qt).neg()), ny.mul_add(qn, &nx.mul(qt))];
+        let p2 = p[0].mul_add(&p[0], &p[1].mul(&p[1]));
+        let mut bodies = [BodyOutcome::default(); 2];
+        for (k, b) in self.bodies.iter().enumerate() {
+            let names = &BODY_OUTPUTS[k];
+            let signed = |v: N| if k == 0 { v } else { v.neg() };
+            let dv = [signed(p[0].mul(&b.inv_m)), signed(p[1].mul(&b.inv_m))];
+            let dw = signed(b.rho[0].mul_add(qn, &b.rho[1].mul(qt)).mul(&b.inv_i));
+            bodies[k] = BodyOutcome {
+                velocity: [
+                    out(names[0], &b.v[0].add(&dv[0]))?,
+                    out(names[1], &b.v[1].add(&dv[1]))?,
+                ],
+                angular_velocity: out(names[2], &b.w.add(&dw))?,
+                velocity_change: [out(names[3], &dv[0])?, out(names[4], &dv[1])?],
+                delta_v: out_times_sqrt(names[5], &b.inv_m, &p2)?,
+                angular_velocity_change: out(names[6], &dw)?,
+            };
+        }
+        let contact_velocity = ContactVelocities {
+            initial: ContactVelocity {
+                normal: self.along(Output::InitialNormalContactVelocity, &self.un)?,
+                tangential: self.along(Output::InitialTangentialContactVelocity, &self.ut)?,
+            },
+            r#final: ContactVelocity {
+                normal: self.along(Output::FinalNormalContactVelocity, &a.un)?,
+                tangential: self.along(Output::FinalTangentialContactVelocity, &a.ut)?,
+            },
+        };
+        let impulse = WorldImpulse {
+            normal: out_times_sqrt(Output::NormalImpulse, qn, &self.nn)?,
+            tangential: out_times_sqrt(Output::TangentialImpulse, qt, &self.nn)?,
+            x: out(Output::ImpulseX, &p[0])?,
+            y: out(Output::ImpulseY, &p[1])?,
+        };
+        let impulse_ratio = out(Output::ImpulseRatio, x.mu)?;
+        let critical_impulse_ratio = critical_output(&x.critical)?;
+        let restitution = out(Output::Restitution, x.e)?;
+        let energy = if x.outputs.energy {
+            Some(self.energy(&x.work)?)
+        } else {
+            None
+        };
+        *outcome = BodiesOutcome {
+            bodies,
+            body_count: self.bodies.len(),
+            contact_velocity,
+            impulse,
+            impulse_ratio,
+            critical_impulse_ratio,
+            restitution,
+            kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution),
+            regime: x.regime,
+            energy,
+        };
+        Ok(())
+    }
+}
+
+/// A validated planar contact in the field `N` under its validated law:
+/// refused unless the contact approaches (`ũ_n < 0`, decided exactly in the
+/// exact fields; the fast evaluation is only asked where validation found the
+/// f64 sign certain).
+pub(crate) fn bodies<N: Field>(
+    impact: &BodiesImpact,
+    outputs: Outputs,
+    out: &mut BodiesOutcome,
+) -> Exact<N, ()> {
+    let scene = Scene::<N>::new(impact);
+    if sign(&scene.s)? != Ordering::Greater {
+        return Err(ImpactError::NotApproaching {
+            input: Input::VelocityA,
+            normal_contact_velocity: scene.un.approx() / scene.nn.approx().sqrt(),
+        }
+        .into());
+    }
+    under_law(&scene, &impact.law, outputs, out)
+}
