@@ -26,6 +26,7 @@ pub fn router() -> OpenApiRouter {
         .routes(routes!(impacts_oblique))
         .routes(routes!(impacts_tangential))
         .routes(routes!(impacts_torsional))
+        .routes(routes!(super::planar::impacts_planar))
 }
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.

@@ -10,6 +10,7 @@ pub mod dto;
 pub mod extract;
 pub mod fits;
 pub mod impacts;
+pub mod planar;
 pub mod problem;
 pub mod sweeps;
 

@@ -91,6 +91,11 @@ impl ApiError {
         self
     }
 
+    /// The pointer to the offending member, if any.
+    pub fn pointer(&self) -> Option<&str> {
+        self.problem.pointer.as_deref()
+    }
+
     /// Adds a `Retry-After` header (seconds).
     pub fn retry_after(mut self, seconds: u32) -> Self {
         self.retry_after = Some(seconds);

@@ -23,7 +23,7 @@
 
 use std::cmp::Ordering;
 
-use super::contact::{Assembly, ContactSpace, critical_output, under_law};
+use super::contact::{Assembly, ContactSpace, under_law};
 use super::{Exact, half, out, out_times_sqrt, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
@@ -323,7 +323,11 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
             y: out(Output::ImpulseY, &p[1])?,
         };
         let impulse_ratio = out(Output::ImpulseRatio, x.mu)?;
-        let critical_impulse_ratio = critical_output(&x.critical)?;
+        // `null` where the sticking impulse has no normal part (conventions, rule 5).
+        let critical_impulse_ratio = match &x.critical {
+            Some(Some(mu_c)) => Some(out(Output::CriticalImpulseRatio, mu_c)?),
+            Some(None) | None => None,
+        };
         let restitution = out(Output::Restitution, x.e)?;
         let energy = if x.outputs.energy {
             Some(self.energy(&x.work)?)

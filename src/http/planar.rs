@@ -1,0 +1,477 @@
+//! `POST /v1/impacts/planar`: body A against body B or a barrier, in world
+//! axes (the general planar contact).
+
+use axum::Json;
+use axum::http::StatusCode;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
+use super::extract::ApiJson;
+use super::impacts::KineticRestitutionDto;
+use super::problem::{ApiError, Problems};
+use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision, solve};
+use crate::outcome::{BodiesOutcome, BodyOutcome, Outputs};
+
+/// A vector in world axes.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct VectorDto {
+    /// x component.
+    pub x: f64,
+    /// y component.
+    pub y: f64,
+}
+
+impl From<VectorDto> for [f64; 2] {
+    fn from(v: VectorDto) -> Self {
+        [v.x, v.y]
+    }
+}
+
+impl From<[f64; 2]> for VectorDto {
+    fn from(v: [f64; 2]) -> Self {
+        VectorDto { x: v[0], y: v[1] }
+    }
+}
+
+/// A rigid lamina in world axes.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LaminaDto {
+    /// m: mass (> 0).
+    #[schema(exclusive_minimum = 0.0, example = 1500.0)]
+    pub mass: f64,
+    /// I: moment of inertia about the mass centre (> 0).
+    #[schema(exclusive_minimum = 0.0, example = 2500.0)]
+    pub inertia: f64,
+    /// Position of the mass centre G.
+    pub position: VectorDto,
+    /// Velocity of G.
+    pub velocity: VectorDto,
+    /// ω: angular velocity, counter-clockwise positive.
+    pub angular_velocity: f64,
+}
+
+impl From<LaminaDto> for Lamina {
+    fn from(l: LaminaDto) -> Self {
+        Lamina {
+            mass: l.mass,
+            inertia: l.inertia,
+            position: l.position.into(),
+            velocity: l.velocity.into(),
+            angular_velocity: l.angular_velocity,
+        }
+    }
+}
+
+/// The contact point and the normal from body B (or the barrier) into body A.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PlanarContactDto {
+    /// C: the contact point.
+    pub point: VectorDto,
+    /// n: the normal from B into A, any non-zero length (the model uses n/|n|).
+    pub normal: VectorDto,
+}
+
+/// One point contact between two laminae, or one and a fixed barrier, in
+/// world axes: `restitution` (or `kinetic_restitution`) and at most one
+/// tangential law (`friction`; `impulse_ratio`; `tangential_restitution`
+/// with `friction`); none is frictionless.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "bodies": [
+        {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+         "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+        {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+         "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
+    ],
+    "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
+    "restitution": 0.2,
+    "friction": 0.6
+}))]
+pub struct PlanarContactRequest {
+    /// Body A, and body B unless A hits a fixed barrier (1 or 2 bodies).
+    pub bodies: Vec<LaminaDto>,
+    /// The contact.
+    pub contact: PlanarContactDto,
+    /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
+    #[schema(minimum = 0.0, maximum = 1.0, example = 0.2)]
+    pub restitution: Option<f64>,
+    /// The two-phase kinetic model, in place of `restitution` (regime `prescribed`).
+    pub kinetic_restitution: Option<KineticRestitutionDto>,
+    /// f: Coulomb friction coefficient (≥ 0).
+    #[schema(minimum = 0.0, example = 0.6)]
+    pub friction: Option<f64>,
+    /// μ = P_t / P_n: a prescribed signed impulse ratio along t = ẑ × n.
+    pub impulse_ratio: Option<f64>,
+    /// e_t: tangential coefficient of restitution in [−1, 1], capped by `friction`.
+    #[schema(minimum = -1.0, maximum = 1.0)]
+    pub tangential_restitution: Option<f64>,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
+}
+
+fn law_problem(pointer: &str, detail: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "tangential-law",
+        "The law's members do not fit together",
+        detail,
+    )
+    .at(pointer)
+}
+
+impl PlanarContactRequest {
+    /// The law the members name (conventions: the second of two tangential
+    /// members is refused; `tangential_restitution` needs `friction`;
+    /// `kinetic_restitution` replaces `restitution`).
+    fn law(&self) -> Result<Law, ApiError> {
+        let tangential = match (self.friction, self.impulse_ratio, self.tangential_restitution) {
+            (Some(_), Some(_), _) => {
+                return Err(law_problem(
+                    "/impulse_ratio",
+                    "give friction or impulse_ratio, not both",
+                ));
+            }
+            (None, Some(_), Some(_)) => {
+                return Err(law_problem(
+                    "/tangential_restitution",
+                    "tangential_restitution goes with friction, not with impulse_ratio",
+                ));
+            }
+            (None, None, Some(_)) => {
+                return Err(law_problem(
+                    "/friction",
+                    "tangential_restitution needs friction, its cap",
+                ));
+            }
+            other => other,
+        };
+        if let Some(k) = self.kinetic_restitution {
+            if self.restitution.is_some() {
+                return Err(law_problem(
+                    "/restitution",
+                    "kinetic_restitution replaces restitution: give one",
+                ));
+            }
+            if tangential != (None, None, None) {
+                let pointer = if tangential.0.is_some() {
+                    "/friction"
+                } else {
+                    "/impulse_ratio"
+                };
+                return Err(law_problem(
+                    pointer,
+                    "kinetic_restitution carries its own impulse ratios: give no other tangential law",
+                ));
+            }
+            return Ok(Law::KineticRestitution {
+                value: k.value,
+                approach_impulse_ratio: k.approach_impulse_ratio,
+                rebound_impulse_ratio: k.rebound_impulse_ratio,
+            });
+        }
+        let Some(restitution) = self.restitution else {
+            return Err(law_problem(
+                "/restitution",
+                "give restitution, or kinetic_restitution",
+            ));
+        };
+        Ok(match tangential {
+            (Some(friction), None, Some(tangential_restitution)) => Law::TangentialRestitution {
+                restitution,
+                friction,
+                tangential_restitution,
+            },
+            (Some(friction), None, None) => Law::Friction {
+                restitution,
+                friction,
+            },
+            (None, Some(impulse_ratio), None) => Law::ImpulseRatio {
+                restitution,
+                impulse_ratio,
+            },
+            _ => Law::Frictionless { restitution },
+        })
+    }
+}
+
+impl TryFrom<&PlanarContactRequest> for BodiesImpact {
+    type Error = ApiError;
+
+    fn try_from(req: &PlanarContactRequest) -> Result<Self, ApiError> {
+        let (a, b) = match req.bodies[..] {
+            [a] => (a, None),
+            [a, b] => (a, Some(b)),
+            _ => {
+                return Err(ApiError::new(
+                    StatusCode::UNPROCESSABLE_ENTITY,
+                    "body-count",
+                    "One or two bodies",
+                    format!(
+                        "a contact has body A and either body B or a barrier: give 1 or 2 bodies, not {}",
+                        req.bodies.len()
+                    ),
+                )
+                .at("/bodies"));
+            }
+        };
+        Ok(BodiesImpact {
+            a: a.into(),
+            b: b.map(Into::into),
+            contact: PlanarContact {
+                point: req.contact.point.into(),
+                normal: req.contact.normal.into(),
+            },
+            law: req.law()?,
+        })
+    }
+}
+
+/// What one body answers.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct PlanarBodyOut {
+    /// V: final velocity of the mass centre.
+    pub velocity: VectorDto,
+    /// Ω: final angular velocity.
+    pub angular_velocity: f64,
+    /// ΔV = V − v.
+    pub velocity_change: VectorDto,
+    /// |ΔV|: the delta-V of accident reconstruction.
+    pub delta_v: f64,
+    /// ΔΩ = Ω − ω.
+    pub angular_velocity_change: f64,
+}
+
+impl From<&BodyOutcome> for PlanarBodyOut {
+    fn from(b: &BodyOutcome) -> Self {
+        PlanarBodyOut {
+            velocity: b.velocity.into(),
+            angular_velocity: b.angular_velocity,
+            velocity_change: b.velocity_change.into(),
+            delta_v: b.delta_v,
+            angular_velocity_change: b.angular_velocity_change,
+        }
+    }
+}
+
+/// The impulse on body A (−P acts on B).
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct WorldImpulseOut {
+    /// P_n = P·n̂ > 0.
+    pub normal: f64,
+    /// P_t = P·t̂, t̂ = ẑ × n̂.
+    pub tangential: f64,
+    /// World x of P.
+    pub x: f64,
+    /// World y of P: the principal direction of force is (x, y).
+    pub y: f64,
+}
+
+/// The outcome of a planar contact.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+// The server's answer to the request example (two cars, sticking).
+#[schema(example = json!({
+    "bodies": [
+        {"velocity": {"x": 7.523287026136095, "y": 3.9399105250765243},
+         "angular_velocity": 2.5090652225100065,
+         "velocity_change": {"x": -7.476712973863905, "y": 3.9399105250765243},
+         "delta_v": 8.45127989355184, "angular_velocity_change": 2.5090652225100065},
+        {"velocity": {"x": 9.345891217329882, "y": 7.075111843654344},
+         "angular_velocity": -2.9809277136802463,
+         "velocity_change": {"x": 9.345891217329882, "y": -4.924888156345656},
+         "delta_v": 10.5640998669398, "angular_velocity_change": -2.9809277136802463}
+    ],
+    "contact_velocity": {"initial": {"normal": -15.0, "tangential": 12.0}, "final": {"normal": 3.0, "tangential": 0.0}},
+    "impulse": {"normal": 11215.069460795858, "tangential": -5909.865787614786, "x": -11215.069460795858, "y": 5909.865787614786},
+    "impulse_ratio": -0.5269575733145216,
+    "critical_impulse_ratio": -0.5269575733145216,
+    "restitution": 0.2,
+    "kinetic_restitution": 0.2,
+    "regime": "sticking",
+    "energy": {"initial": 255150.0, "final": 152400.38850953613, "loss": 102749.61149046387,
+               "max_loss": 105160.06592889097, "normalized_loss": 0.9770782338605888},
+    "precision": "fast"
+}))]
+pub struct PlanarContactResponse {
+    /// Body A, then body B if given.
+    pub bodies: Vec<PlanarBodyOut>,
+    /// Relative contact velocity u = u_A − u_B along n̂ and t̂, before and after.
+    pub contact_velocity: ContactVelocitiesOut,
+    /// The impulse on A.
+    pub impulse: WorldImpulseOut,
+    /// μ = P_t / P_n.
+    pub impulse_ratio: f64,
+    /// μ_c: the ratio of the sticking impulse (signed, along t̂); null when that impulse has P_n = 0.
+    pub critical_impulse_ratio: Option<f64>,
+    /// e (for the two-phase model, the equivalent e = R D_R / D_A).
+    pub restitution: f64,
+    /// R (e under the kinematic law).
+    pub kinetic_restitution: f64,
+    /// The branch of the law that answered.
+    pub regime: RegimeDto,
+    /// Kinetic energies of the pair: T_L in work form, T_M = ½ uᵀW⁻¹u, T_L* = T_L/T_M.
+    pub energy: PlanarEnergyOut,
+    /// The precision that produced the answer.
+    pub precision: PrecisionDto,
+}
+
+impl PlanarContactResponse {
+    /// Maps an outcome computed with every output in `precision`.
+    pub fn from_outcome(o: &BodiesOutcome, precision: Precision) -> Self {
+        let energy = o.energy.unwrap_or_default();
+        PlanarContactResponse {
+            bodies: o.bodies[..o.body_count].iter().map(Into::into).collect(),
+            contact_velocity: ContactVelocitiesOut {
+                initial: o.contact_velocity.initial.into(),
+                final_: o.contact_velocity.r#final.into(),
+            },
+            impulse: WorldImpulseOut {
+                normal: o.impulse.normal,
+                tangential: o.impulse.tangential,
+                x: o.impulse.x,
+                y: o.impulse.y,
+            },
+            impulse_ratio: o.impulse_ratio,
+            critical_impulse_ratio: o.critical_impulse_ratio,
+            restitution: o.restitution,
+            kinetic_restitution: o.kinetic_restitution,
+            regime: o.regime.into(),
+            energy: PlanarEnergyOut {
+                initial: energy.initial,
+                final_: energy.r#final,
+                loss: energy.loss,
+                max_loss: energy.max_loss,
+                normalized_loss: energy.normalized_loss,
+            },
+            precision: precision.into(),
+        }
+    }
+}
+
+/// The response to a planar contact request.
+pub fn respond_planar_contact(req: PlanarContactRequest) -> Result<PlanarContactResponse, ApiError> {
+    let precision = Precision::from(req.precision);
+    let impact = BodiesImpact::try_from(&req)?;
+    let outcome = solve(&impact, Outputs::ALL, precision)?;
+    Ok(PlanarContactResponse::from_outcome(&outcome, precision))
+}
+
+/// Two laminae, or one against a barrier, in world axes: every law of the one-body endpoints.
+#[utoipa::path(
+    post,
+    path = "/v1/impacts/planar",
+    tag = "impacts",
+    request_body(content = PlanarContactRequest, content_type = "application/json"),
+    responses((status = 200, description = "The contact's outcome", body = PlanarContactResponse), Problems)
+)]
+pub async fn impacts_planar(
+    ApiJson(req): ApiJson<PlanarContactRequest>,
+) -> Result<Json<PlanarContactResponse>, ApiError> {
+    Ok(Json(respond_planar_contact(req)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::{Value as Json, json};
+
+    use super::*;
+    use crate::impact::Case;
+    use crate::quantity::Value;
+
+    fn request(bodies: usize, law: Json) -> Json {
+        let lamina = |x: f64, vx: f64| {
+            json!({"mass": 1.5, "inertia": 0.25, "position": {"x": x, "y": 0.125},
+                   "velocity": {"x": vx, "y": 0.75}, "angular_velocity": 1.25})
+        };
+        let all = [lamina(0.0, 3.0), lamina(2.0, -1.0)];
+        let mut r = json!({
+            "bodies": all[..bodies].to_vec(),
+            "contact": {"point": {"x": 1.0, "y": 0.5}, "normal": {"x": -2.0, "y": 0.5}},
+        });
+        r.as_object_mut()
+            .unwrap()
+            .extend(law.as_object().unwrap().clone());
+        r
+    }
+
+    #[test]
+    fn every_input_and_output_path_resolves_in_the_planar_contact_wire_types() {
+        for bodies in [1, 2] {
+            for law in [
+                json!({"restitution": 0.5}),
+                json!({"restitution": 0.5, "friction": 0.3}),
+                json!({"restitution": 0.5, "impulse_ratio": 0.05}),
+                json!({"restitution": 0.5, "friction": 0.3, "tangential_restitution": 0.2}),
+                json!({"kinetic_restitution": {"value": 0.5, "approach_impulse_ratio": 0.05, "rebound_impulse_ratio": 0.04}}),
+            ] {
+                let r = request(bodies, law);
+                let req: PlanarContactRequest = serde_json::from_value(r.clone()).unwrap();
+                let impact = BodiesImpact::try_from(&req).unwrap();
+                for input in impact.reads() {
+                    let at = r
+                        .pointer(input.path())
+                        .unwrap_or_else(|| panic!("{} in {r}", input.path()));
+                    assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
+                }
+                for precision in [Precision::Fast, Precision::Exact] {
+                    let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
+                    let response =
+                        serde_json::to_value(PlanarContactResponse::from_outcome(&outcome, precision))
+                            .unwrap();
+                    for &output in BodiesImpact::OUTPUTS {
+                        let value = BodiesImpact::output(&outcome, output);
+                        match (response.pointer(output.path()), value) {
+                            (Some(at), Value::Number(x)) => {
+                                assert_eq!(at.as_f64(), Some(x), "{}", output.path())
+                            }
+                            (Some(at), Value::Text(name)) => assert_eq!(at.as_str(), Some(name)),
+                            // Body B's outputs, against a barrier.
+                            (None, Value::Number(x)) => {
+                                assert!(bodies == 1 && x.is_nan(), "{}", output.path())
+                            }
+                            (None, Value::Text(_)) => panic!("{}", output.path()),
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn conflicting_law_members_are_refused_at_the_member_the_conventions_name() {
+        for (law, pointer) in [
+            (
+                json!({"restitution": 0.5, "friction": 0.3, "impulse_ratio": 0.1}),
+                "/impulse_ratio",
+            ),
+            (
+                json!({"restitution": 0.5, "tangential_restitution": 0.2}),
+                "/friction",
+            ),
+            (
+                json!({"restitution": 0.5, "impulse_ratio": 0.1, "tangential_restitution": 0.2}),
+                "/tangential_restitution",
+            ),
+            (
+                json!({"restitution": 0.5, "kinetic_restitution": {"value": 0.5, "approach_impulse_ratio": 0.0, "rebound_impulse_ratio": 0.0}}),
+                "/restitution",
+            ),
+            (json!({"friction": 0.3}), "/restitution"),
+        ] {
+            let req: PlanarContactRequest = serde_json::from_value(request(2, law.clone())).unwrap();
+            let error = BodiesImpact::try_from(&req).unwrap_err();
+            assert_eq!(error.pointer(), Some(pointer), "{law}");
+        }
+        let req: PlanarContactRequest =
+            serde_json::from_value(request(0, json!({"restitution": 0.5}))).unwrap();
+        assert_eq!(
+            BodiesImpact::try_from(&req).unwrap_err().pointer(),
+            Some("/bodies")
+        );
+    }
+}
