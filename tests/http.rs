@@ -759,3 +759,70 @@ async fn documented_examples_are_the_servers_real_answers() {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(answer, problem);
 }
+
+/// `POST /v1/impacts/planar` over HTTP: two cars conserve momentum; one body
+/// against a barrier in world axes answers what `/v1/impacts/oblique` answers,
+/// bit for bit in `exact` precision.
+#[tokio::test]
+async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_oblique_one() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let cars = json!({
+        "bodies": [
+            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
+        ],
+        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
+        "restitution": 0.2,
+        "friction": 0.6
+    });
+    let (status, _, body) = app.post("/v1/impacts/planar", &cars).await;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let bodies = body["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 2);
+    for axis in ["x", "y"] {
+        let p = 1500.0 * bodies[0]["velocity_change"][axis].as_f64().unwrap()
+            + 1200.0 * bodies[1]["velocity_change"][axis].as_f64().unwrap();
+        assert!(p.abs() < 1e-9, "momentum change {p} along {axis}");
+    }
+    assert_eq!(body["contact_velocity"]["final"]["tangential"], 0.0);
+    assert_eq!(body["regime"], "sticking");
+
+    // The Maw disc of the oblique example, in world axes with n = ŷ (t̂ = −x̂):
+    // G sits d_d above C, v = v_n ŷ + v_t t̂.
+    let oblique = json!({
+        "body": {"mass": 1.0, "inertia": 0.00125},
+        "contact": {"tangential_offset": 0.0, "normal_offset": 0.05},
+        "velocity": {"normal": -1.0, "tangential": 0.4, "angular": 0.0},
+        "restitution": 0.93, "friction": 0.123, "precision": "exact"
+    });
+    let world = json!({
+        "bodies": [{"mass": 1.0, "inertia": 0.00125, "position": {"x": 0.0, "y": 0.05},
+                    "velocity": {"x": -0.4, "y": -1.0}, "angular_velocity": 0.0}],
+        "contact": {"point": {"x": 0.0, "y": 0.0}, "normal": {"x": 0.0, "y": 2.0}},
+        "restitution": 0.93, "friction": 0.123, "precision": "exact"
+    });
+    let (_, _, one) = app.post("/v1/impacts/oblique", &oblique).await;
+    let (status, _, general) = app.post("/v1/impacts/planar", &world).await;
+    assert_eq!(status, StatusCode::OK, "{general}");
+    let b = &general["bodies"][0];
+    assert_eq!(b["velocity"]["y"], one["final_velocity"]["normal"]);
+    assert_eq!(
+        b["velocity"]["x"].as_f64().unwrap(),
+        -one["final_velocity"]["tangential"].as_f64().unwrap()
+    );
+    assert_eq!(b["angular_velocity"], one["final_velocity"]["angular"]);
+    for key in [
+        "contact_velocity",
+        "impulse_ratio",
+        "critical_impulse_ratio",
+        "restitution",
+        "regime",
+        "energy",
+    ] {
+        assert_eq!(general[key], one[key], "{key}");
+    }
+    assert_eq!(general["impulse"]["normal"], one["impulse"]["normal"]);
+    assert_eq!(general["impulse"]["tangential"], one["impulse"]["tangential"]);
+}

@@ -21,6 +21,116 @@ fn normal_request() -> Value {
     json!({"body": {"mass": 2.0}, "velocity": {"normal": -3.0}, "restitution": 0.5})
 }
 
+/// Two cars at an intersection: the planar endpoint's worked example.
+fn planar_request() -> Value {
+    json!({
+        "bodies": [
+            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
+        ],
+        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
+        "restitution": 0.2,
+        "friction": 0.6
+    })
+}
+
+#[tokio::test]
+async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let with = |pointer: &str, value: Value| {
+        let mut r = planar_request();
+        *r.pointer_mut(pointer).unwrap() = value;
+        r
+    };
+    let lamina = planar_request()["bodies"][0].clone();
+    let cases: Vec<(&str, Value, &str)> = vec![
+        (
+            "a third body",
+            with("/bodies", json!([lamina, lamina, lamina])),
+            "/bodies",
+        ),
+        ("no body", with("/bodies", json!([])), "/bodies"),
+        (
+            "a zero normal",
+            with("/contact/normal", json!({"x": 0.0, "y": -0.0})),
+            "/contact/normal",
+        ),
+        (
+            "a negative mass",
+            with("/bodies/1/mass", json!(-1.0)),
+            "/bodies/1/mass",
+        ),
+        (
+            "a zero inertia",
+            with("/bodies/0/inertia", json!(0.0)),
+            "/bodies/0/inertia",
+        ),
+        (
+            "separating",
+            with("/bodies/0/velocity", json!({"x": -15.0, "y": 0.0})),
+            "/bodies/0/velocity",
+        ),
+        (
+            "restitution above 1",
+            with("/restitution", json!(1.5)),
+            "/restitution",
+        ),
+        ("a huge friction", with("/friction", json!(1e308)), ""),
+        (
+            "a number as a string",
+            with("/bodies/0/position/x", json!("NaN")),
+            "/bodies/0/position/x",
+        ),
+        (
+            "an unknown member",
+            with("/contact/normal", json!({"x": 1.0, "y": 0.0, "z": 0.0})),
+            "/contact/normal",
+        ),
+    ];
+    for (name, body, pointer) in cases {
+        let (status, _, problem) = timeout(BOUND, app.post("/v1/impacts/planar", &body))
+            .await
+            .unwrap();
+        if pointer.is_empty() {
+            assert!(status.is_success(), "{name}: {status} {problem}");
+        } else {
+            assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{name}: {problem}");
+            assert!(
+                problem["pointer"]
+                    .as_str()
+                    .is_some_and(|p| p.starts_with(pointer)),
+                "{name}: {problem}"
+            );
+        }
+        still_serving(&app).await;
+    }
+    // Huge arrays of bodies and numbers beyond f64: refused, not a 5xx.
+    let many = format!(
+        r#"{{"bodies": [{}], "contact": {{"point": {{"x": 0, "y": 0}}, "normal": {{"x": 1, "y": 0}}}}, "restitution": 0.5}}"#,
+        vec![serde_json::to_string(&lamina).unwrap(); 5000].join(",")
+    );
+    let beyond = serde_json::to_string(&planar_request())
+        .unwrap()
+        .replace("1500.0", "1e400");
+    for body in [many, beyond] {
+        let response = timeout(
+            BOUND,
+            app.client
+                .post(format!("{}/v1/impacts/planar", app.base))
+                .header("content-type", "application/json")
+                .body(body)
+                .send(),
+        )
+        .await
+        .unwrap()
+        .unwrap();
+        assert_eq!(response.status(), StatusCode::UNPROCESSABLE_ENTITY);
+        still_serving(&app).await;
+    }
+}
+
 /// Posts raw bytes; returns status, content type and the body as JSON.
 async fn raw(app: &TestApp, content_type: Option<&str>, body: Vec<u8>) -> (StatusCode, String, Value) {
     timeout(BOUND, app.post_raw("/v1/impacts/normal", content_type, body))
