@@ -570,3 +570,71 @@ async fn figure_4_torsional_branches_have_slopes_minus_ez_and_one_minus_ez() {
     ));
     assert!((switch - 22.5).abs() < 1e-12);
 }
+
+/// A planar sweep: an axis on body B's velocity, the columns each car's
+/// delta-V; every row is the library's answer for that point, bit for bit.
+#[tokio::test]
+async fn a_planar_sweep_takes_body_inputs_as_axes_and_body_outputs_as_columns() {
+    use restitution::{BodiesImpact, Lamina, Law, Outputs, PlanarContact, Precision, solve};
+    let app = spawn_app(ServiceConfig::default()).await;
+    let cars = json!({
+        "bodies": [
+            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
+        ],
+        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
+        "restitution": 0.2,
+        "friction": 0.6
+    });
+    let body = json!({
+        "case": "planar",
+        "base": cars,
+        "axes": [{"path": "/bodies/1/velocity/y", "linspace": {"start": 0.0, "stop": 30.0, "count": 7}}],
+        "outputs": ["/bodies/0/delta_v", "/bodies/1/delta_v", "/regime"]
+    });
+    let table = json_table(&app, &body).await;
+    assert_eq!(
+        table["columns"],
+        json!([
+            "/bodies/1/velocity/y",
+            "/bodies/0/delta_v",
+            "/bodies/1/delta_v",
+            "/regime",
+            "error"
+        ])
+    );
+    let lamina = |mass: f64, inertia: f64, position: [f64; 2], velocity: [f64; 2]| Lamina {
+        mass,
+        inertia,
+        position,
+        velocity,
+        angular_velocity: 0.0,
+    };
+    for row in table["rows"].as_array().unwrap() {
+        let vy = row[0].as_f64().unwrap();
+        let impact = BodiesImpact {
+            a: lamina(1500.0, 2500.0, [0.0, 0.0], [15.0, 0.0]),
+            b: Some(lamina(1200.0, 1800.0, [3.0, -1.5], [0.0, vy])),
+            contact: PlanarContact {
+                point: [2.2, -0.6],
+                normal: [-1.0, 0.0],
+            },
+            law: Law::Friction {
+                restitution: 0.2,
+                friction: 0.6,
+            },
+        };
+        let o = solve(&impact, Outputs::ALL, Precision::Fast).unwrap();
+        assert_eq!(row[1].as_f64(), Some(o.bodies[0].delta_v), "{row}");
+        assert_eq!(row[2].as_f64(), Some(o.bodies[1].delta_v), "{row}");
+        assert_eq!(row[3].as_str(), Some(o.regime.as_str()), "{row}");
+    }
+    // An axis on body B of a barrier base names the inputs the base reads.
+    let mut barrier = body.clone();
+    barrier["base"]["bodies"] = json!([cars["bodies"][0]]);
+    let (status, _, problem) = app.post("/v1/sweeps", &barrier).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/axes/0/path", "{problem}");
+}

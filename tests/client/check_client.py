@@ -12,6 +12,7 @@ from restitution_client import Client
 from restitution_client.api.impacts import (
     impacts_normal,
     impacts_oblique,
+    impacts_planar,
     impacts_tangential,
     impacts_torsional,
 )
@@ -21,6 +22,8 @@ from restitution_client.api.sweeps import sweeps
 from restitution_client.models import (
     NormalRequest,
     ObliqueRequest,
+    PlanarContactRequest,
+    PlanarContactResponse,
     PlanarResponse,
     Problem,
     SweepRequest,
@@ -95,6 +98,36 @@ def main(base):
     switch = 0.3 * 0.01 * 0.6 * 1.7 * 3.0 / 0.003456
     check("torsional", isinstance(out, TorsionalResponse) and out.regime == "sliding"
           and close(out.final_velocity.spin, 0.8 * 20.0 - switch) and close(out.switch_spin, switch), repr(out))
+
+    # Two cars (the planar endpoint's example): momentum of the pair conserved.
+    cars = {
+        "bodies": [
+            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0},
+        ],
+        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
+        "restitution": 0.2,
+        "friction": 0.6,
+    }
+    out = impacts_planar.sync(client=client, body=PlanarContactRequest.from_dict(cars))
+    check("planar", isinstance(out, PlanarContactResponse) and out.regime == "sticking"
+          and close(1500.0 * out.bodies[0].velocity_change.x + 1200.0 * out.bodies[1].velocity_change.x, 0.0, 1e-9)
+          and close(out.contact_velocity.final.normal, 3.0), repr(out))
+
+    # A planar sweep over body B's speed, delta-V of both cars as columns.
+    sweep = SweepRequest.from_dict({
+        "case": "planar",
+        "base": cars,
+        "axes": [{"path": "/bodies/1/velocity/y", "values": [6.0, 12.0]}],
+        "outputs": ["/bodies/0/delta_v", "/bodies/1/delta_v"],
+    })
+    response = sweeps.sync_detailed(client=client, body=sweep)
+    table = json.loads(response.content)
+    check("planar sweep", response.status_code == 200 and table["points"] == 2
+          and close(table["rows"][1][1], out.bodies[0].delta_v) and close(table["rows"][1][2], out.bodies[1].delta_v),
+          repr(table))
 
     # A documented error comes back as a parsed problem.
     response = impacts_oblique.sync_detailed(client=client, body=ObliqueRequest.from_dict(maw(2.0, friction=-1.0)))

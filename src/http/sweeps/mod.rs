@@ -32,8 +32,9 @@ use self::stream::stream;
 use super::ServiceConfig;
 use super::extract::{ApiJson, parse_value};
 use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest};
+use super::planar::PlanarContactRequest;
 use super::problem::{ApiError, Problem, Problems};
-use crate::impact::{Case, PlanarImpact, Precision, TorsionalImpact};
+use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, TorsionalImpact};
 use crate::sweep::{CaseSweep, Sweep};
 
 /// The sweep endpoint, with its OpenAPI operation.
@@ -99,6 +100,11 @@ pub async fn sweeps(
         CaseDto::Torsional => {
             let base: TorsionalRequest = parse_value(base, "/base")?;
             let impact = TorsionalImpact::from(&base);
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+        CaseDto::Planar => {
+            let base: PlanarContactRequest = parse_value(base, "/base")?;
+            let impact = BodiesImpact::try_from(&base).map_err(|e| e.under("/base"))?;
             run(&request, impact, base.precision, limit, format, stall, &streams).await
         }
     }

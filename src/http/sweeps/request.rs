@@ -24,6 +24,8 @@ pub enum CaseDto {
     Tangential,
     /// `POST /v1/impacts/torsional`.
     Torsional,
+    /// `POST /v1/impacts/planar`.
+    Planar,
 }
 
 /// How axes combine into points.
