@@ -826,3 +826,53 @@ async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_obliq
     assert_eq!(general["impulse"]["normal"], one["impulse"]["normal"]);
     assert_eq!(general["impulse"]["tangential"], one["impulse"]["tangential"]);
 }
+
+/// The planar examples in `examples/` answer what `examples/README.md` says.
+#[tokio::test]
+async fn the_planar_examples_answer_what_the_examples_readme_says() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let read = |name: &str| -> Value {
+        let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    let (status, _, cars) = app
+        .post("/v1/impacts/planar", &read("planar_car_to_car.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{cars}");
+    assert_eq!(cars["regime"], "sticking");
+    let dv = |o: &Value, k: usize| o["bodies"][k]["delta_v"].as_f64().unwrap();
+    assert!(
+        (dv(&cars, 0) - 8.45).abs() < 0.005 && (dv(&cars, 1) - 10.56).abs() < 0.005,
+        "{cars}"
+    );
+    assert!((cars["impulse_ratio"].as_f64().unwrap() + 0.527).abs() < 0.0005);
+    let (px, py) = (
+        cars["impulse"]["x"].as_f64().unwrap(),
+        cars["impulse"]["y"].as_f64().unwrap(),
+    );
+    let norm = px.hypot(py);
+    assert!((px / norm + 0.885).abs() < 0.0005 && (py / norm - 0.466).abs() < 0.0005);
+    assert!((cars["energy"]["normalized_loss"].as_f64().unwrap() - 0.98).abs() < 0.005);
+
+    let (status, _, discs) = app
+        .post("/v1/impacts/planar", &read("planar_billiard_discs.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{discs}");
+    assert_eq!(discs["regime"], "sliding");
+    assert_eq!(discs["impulse"]["normal"], 0.2652);
+    assert_eq!(discs["impulse_ratio"], -0.06);
+    assert!((discs["critical_impulse_ratio"].as_f64().unwrap() + 0.128).abs() < 0.0005);
+    assert_eq!(discs["bodies"][0]["delta_v"], discs["bodies"][1]["delta_v"]);
+    assert!((discs["bodies"][0]["angular_velocity"].as_f64().unwrap() - 6.55).abs() < 0.005);
+
+    let response = app
+        .client
+        .post(format!("{}/v1/sweeps", app.base))
+        .header("accept", "text/csv")
+        .json(&read("planar_car_to_car_sweep.json"))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::OK);
+    assert_eq!(response.text().await.unwrap().lines().count(), 16);
+}
