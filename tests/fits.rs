@@ -143,3 +143,77 @@ async fn torsional_coefficients_are_recovered_over_http() {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(problem["pointer"], "/observations");
 }
+
+/// `POST /v1/fits/planar`: the coefficients of a crash the service solved come
+/// back from its velocity changes; a normal is fitted when asked; a plastic
+/// sticking crash cannot fix a normal, and the problem says so.
+#[tokio::test]
+async fn a_planar_reconstruction_recovers_e_mu_and_the_normal() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let cars = json!([
+        {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
+         "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
+        {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
+         "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
+    ]);
+    let contact = json!({"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}});
+    let measured = |outcome: &Value| -> Value {
+        let m = |v: &Value| json!({"value": v.as_f64().unwrap(), "uncertainty": 0.1});
+        Value::Array(
+            outcome["bodies"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|b| {
+                    json!({"velocity_change": {"x": m(&b["velocity_change"]["x"]), "y": m(&b["velocity_change"]["y"])},
+                           "angular_velocity_change": m(&b["angular_velocity_change"])})
+                })
+                .collect(),
+        )
+    };
+    for (law, fit_normal) in [
+        (json!({"restitution": 0.3, "impulse_ratio": -0.2}), false),
+        (json!({"restitution": 0.3, "friction": 0.9}), true),
+    ] {
+        let mut request = json!({"bodies": cars, "contact": contact});
+        request
+            .as_object_mut()
+            .unwrap()
+            .extend(law.as_object().unwrap().clone());
+        let (status, _, outcome) = app.post("/v1/impacts/planar", &request).await;
+        assert_eq!(status, StatusCode::OK, "{outcome}");
+        let fit_request = json!({"bodies": cars, "contact": contact, "measured": measured(&outcome), "fit_normal": fit_normal});
+        let (status, _, fit) = app.post("/v1/fits/planar", &fit_request).await;
+        assert_eq!(status, StatusCode::OK, "{fit}");
+        let close = |a: &Value, b: f64| (a.as_f64().unwrap() - b).abs() < 1e-9;
+        assert!(close(&fit["restitution"]["value"], 0.3), "{fit}");
+        assert!(
+            close(
+                &fit["impulse_ratio"]["value"],
+                outcome["impulse_ratio"].as_f64().unwrap()
+            ),
+            "{fit}"
+        );
+        assert!(fit["chi_squared"].as_f64().unwrap() < 1e-12, "{fit}");
+        if fit_normal {
+            assert!(close(&fit["normal"]["direction"]["x"], -1.0), "{fit}");
+        } else {
+            assert!(fit["normal"].is_null());
+        }
+    }
+    let mut plastic = json!({"bodies": cars, "contact": contact, "restitution": 0.0, "friction": 0.9});
+    let (_, _, outcome) = app.post("/v1/impacts/planar", &plastic).await;
+    plastic = json!({"bodies": cars, "contact": contact, "measured": measured(&outcome), "fit_normal": true});
+    let (status, _, problem) = app.post("/v1/fits/planar", &plastic).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/fit_normal", "{problem}");
+    assert!(
+        problem["detail"].as_str().unwrap().contains("normal"),
+        "{problem}"
+    );
+    let mut one = json!({"bodies": cars, "contact": contact, "measured": measured(&outcome)});
+    one["measured"].as_array_mut().unwrap().pop();
+    let (status, _, problem) = app.post("/v1/fits/planar", &one).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/measured", "{problem}");
+}

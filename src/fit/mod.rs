@@ -1,14 +1,18 @@
 //! Coefficient identification from measured impacts, one module per model:
-//! [`tangential`](mod@tangential) (`e`, `f`, `e_t` of the bilinear tangential model, section 3)
-//! and [`torsional`](mod@torsional) (`e`, `e_z`, `μ_z` of the torsional model, section 4).
+//! [`tangential`](mod@tangential) (`e`, `f`, `e_t` of the bilinear tangential model, section 3),
+//! [`torsional`](mod@torsional) (`e`, `e_z`, `μ_z` of the torsional model, section 4)
+//! and [`planar`](mod@planar) (`e`, `μ` and the normal of a two-body contact from the
+//! measured velocity changes, as reconstruction needs).
 //! Fitted values are judged by the solver's own model: residuals and regimes
 //! are what [`crate::impact`] answers for the fitted coefficients.
 
+pub mod planar;
 pub mod tangential;
 pub mod torsional;
 
 use thiserror::Error;
 
+pub use planar::{Measured, MeasuredChange, PlanarFit, planar};
 pub use tangential::{Observation, TangentialFit, impulse_ratio_from_intercept, tangential};
 pub use torsional::{TorsionalFit, TorsionalObservation, torsional};
 
@@ -45,6 +49,14 @@ pub enum FitError {
     /// velocities tangentially zero, for instance).
     #[error("the observations cannot determine the coefficients: {0}")]
     Degenerate(&'static str),
+    /// The data cannot determine one parameter.
+    #[error("the data cannot determine {parameter}: {why}")]
+    Undetermined {
+        /// The parameter.
+        parameter: &'static str,
+        /// Why.
+        why: String,
+    },
 }
 
 /// Least squares of `y = −k x` through the origin: `(k, standard error)`.

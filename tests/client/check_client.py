@@ -16,13 +16,15 @@ from restitution_client.api.impacts import (
     impacts_tangential,
     impacts_torsional,
 )
-from restitution_client.api.fits import fits_tangential, fits_torsional
+from restitution_client.api.fits import fits_planar, fits_tangential, fits_torsional
 from restitution_client.api.service import healthz
 from restitution_client.api.sweeps import sweeps
 from restitution_client.models import (
     NormalRequest,
     ObliqueRequest,
     PlanarContactRequest,
+    PlanarFitRequest,
+    PlanarFitResponse,
     PlanarContactResponse,
     PlanarResponse,
     Problem,
@@ -128,6 +130,16 @@ def main(base):
     check("planar sweep", response.status_code == 200 and table["points"] == 2
           and close(table["rows"][1][1], out.bodies[0].delta_v) and close(table["rows"][1][2], out.bodies[1].delta_v),
           repr(table))
+
+    # Reconstruction: e and μ back from the two cars' velocity changes.
+    def measured(b):
+        m = lambda v: {"value": v, "uncertainty": 0.1}
+        return {"velocity_change": {"x": m(b.velocity_change.x), "y": m(b.velocity_change.y)},
+                "angular_velocity_change": m(b.angular_velocity_change)}
+    fit = fits_planar.sync(client=client, body=PlanarFitRequest.from_dict({
+        "bodies": cars["bodies"], "contact": cars["contact"], "measured": [measured(b) for b in out.bodies]}))
+    check("planar fit", isinstance(fit, PlanarFitResponse) and close(fit.restitution.value, 0.2, 1e-9)
+          and close(fit.impulse_ratio.value, out.impulse_ratio, 1e-9), repr(fit))
 
     # A documented error comes back as a parsed problem.
     response = impacts_oblique.sync_detailed(client=client, body=ObliqueRequest.from_dict(maw(2.0, friction=-1.0)))

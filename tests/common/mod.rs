@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod accuracy;
+pub mod bodies_reference;
 pub mod linear;
 pub mod plain;
 pub mod reference;
