@@ -1,6 +1,7 @@
 //! Time per solve of each method on one typical non-central impact (Coulomb
 //! friction, every output): the fast closed forms, the nalgebra 3×3 LU solve,
-//! the adaptive exact mode and the pure rational evaluation.
+//! the adaptive exact mode and the pure rational evaluation; then the general
+//! planar contact (world axes) against a barrier and between two bodies.
 //!
 //! `cargo bench --bench precision`. The errors, and times over whole typical
 //! and stress sets, come from `cargo run --release --example accuracy_report`
@@ -11,7 +12,9 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use linear::{TangentialClosure, solve_momentum};
 use restitution::impact::{Arithmetic, solve_in};
-use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
+use restitution::{
+    BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, Precision, solve,
+};
 
 #[path = "../tests/common/linear.rs"]
 mod linear;
@@ -58,5 +61,42 @@ fn methods(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, methods);
+/// The same body and law in world axes against a barrier (normal `(0, 2)`),
+/// and two such bodies: the general contact's cost.
+fn world(two: bool) -> BodiesImpact {
+    let lamina = |x: f64, vy: f64| Lamina {
+        mass: 1.3,
+        inertia: 0.021,
+        position: [x, 0.11],
+        velocity: [0.9, vy],
+        angular_velocity: 2.3,
+    };
+    BodiesImpact {
+        a: lamina(0.07, -1.7),
+        b: two.then(|| lamina(-0.05, 0.4)),
+        contact: PlanarContact {
+            point: [0.0, 0.0],
+            normal: [0.0, 2.0],
+        },
+        law: Law::Friction {
+            restitution: 0.8,
+            friction: 0.3,
+        },
+    }
+}
+
+fn general(c: &mut Criterion) {
+    let mut group = c.benchmark_group("planar_contact_all_outputs");
+    for (name, impact) in [("barrier", world(false)), ("two_bodies", world(true))] {
+        group.bench_function(format!("{name}_fast"), |b| {
+            b.iter(|| solve(black_box(&impact), Outputs::ALL, Precision::Fast))
+        });
+        group.bench_function(format!("{name}_exact"), |b| {
+            b.iter(|| solve(black_box(&impact), Outputs::ALL, Precision::Exact))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, methods, general);
 criterion_main!(benches);

@@ -32,6 +32,7 @@ use crate::outcome::{BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, Pla
 use crate::scene::ContactVelocity;
 
 /// One body in the field: its inputs, `1/m`, `1/I`, `r = C − G` and `ρ`.
+#[derive(Clone)]
 struct Body<N> {
     m: N,
     inertia: N,
@@ -73,7 +74,9 @@ struct Scene<N> {
     n: [N; 2],
     /// `|n|²`.
     nn: N,
-    bodies: Vec<Body<N>>,
+    /// Body A, and B when `count` is 2 (else a copy of A, unused).
+    bodies: [Body<N>; 2],
+    count: usize,
     un: N,
     ut: N,
     s: N,
@@ -91,19 +94,16 @@ impl<N: Field> Scene<N> {
         let nn = n[0].mul_add(&n[0], &n[1].mul(&n[1]));
         let t = [n[1].neg(), n[0].clone()];
         let one = N::of(1.0);
-        let mut ut = N::of(0.0);
-        let mut bodies = Vec::with_capacity(2);
-        for (k, l) in std::iter::once(&fast.a).chain(fast.b.as_ref()).enumerate() {
+        let body = |l: &Lamina| {
             let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
             let w = N::of(l.angular_velocity);
             let v = [N::of(l.velocity[0]), N::of(l.velocity[1])];
             let ux = w.neg().mul_add(&r[1], &v[0]);
             let uy = w.mul_add(&r[0], &v[1]);
-            let but = ux.mul_add(&t[0], &uy.mul(&t[1]));
-            ut = if k == 0 { but } else { ut.sub(&but) };
+            let ut = ux.mul_add(&t[0], &uy.mul(&t[1]));
             let m = N::of(l.mass);
             let inertia = N::of(l.inertia);
-            bodies.push(Body {
+            let body = Body {
                 inv_m: one.div(&m),
                 inv_i: one.div(&inertia),
                 rho: [
@@ -114,15 +114,26 @@ impl<N: Field> Scene<N> {
                 inertia,
                 v,
                 w,
-            });
-        }
+            };
+            (body, ut)
+        };
+        let (a, mut ut) = body(&fast.a);
+        let (bodies, count) = match &fast.b {
+            Some(l) => {
+                let (b, but) = body(l);
+                ut = ut.sub(&but);
+                ([a, b], 2)
+            }
+            None => ([a.clone(), a], 1),
+        };
+        let bodies_in = &bodies[..count];
         let un = approach::<N>(fast);
-        let mut inv_mass = bodies[0].inv_m.clone();
+        let mut inv_mass = bodies_in[0].inv_m.clone();
         let mut wnn = N::of(0.0);
         let mut wnt = N::of(0.0);
         let mut wtt = N::of(0.0);
         let mut spread = N::of(0.0);
-        for (k, b) in bodies.iter().enumerate() {
+        for (k, b) in bodies_in.iter().enumerate() {
             if k > 0 {
                 inv_mass = inv_mass.add(&b.inv_m);
             }
@@ -136,7 +147,7 @@ impl<N: Field> Scene<N> {
         // det W̃ = α (α + Σ |ρ_b|²/I_b) + (ρ_A × ρ_B)² / (I_A I_B): a sum of
         // non-negative terms, never a difference of nearly equal products.
         let mut det = alpha.mul(&alpha.add(&spread));
-        if let [a, b] = &bodies[..] {
+        if let [a, b] = bodies_in {
             let cross = a.rho[0].mul_add(&b.rho[1], &a.rho[1].mul(&b.rho[0]).neg());
             det = det.add(&cross.mul(&cross).mul(&a.inv_i).mul(&b.inv_i));
         }
@@ -152,6 +163,7 @@ impl<N: Field> Scene<N> {
             nn,
             n,
             bodies,
+            count,
         }
     }
 
@@ -168,7 +180,7 @@ impl<N: Field> Scene<N> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
         let mut adjugate = self.alpha.mul(&self.un.mul_add(&self.un, &self.ut.mul(&self.ut)));
-        for b in &self.bodies {
+        for b in &self.bodies[..self.count] {
             let linear = b.v[0].mul_add(&b.v[0], &b.v[1].mul(&b.v[1])).mul(&b.m);
             initial = initial.add(&h.mul(&b.inertia.mul(&b.w).mul_add(&b.w, &linear)));
             let lever = b.rho[1].mul_add(&self.un, &b.rho[0].mul(&self.ut).neg());
@@ -290,7 +302,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
         let p = [nx.mul_add(qn, &ny.mul(qt).neg()), ny.mul_add(qn, &nx.mul(qt))];
         let p2 = p[0].mul_add(&p[0], &p[1].mul(&p[1]));
         let mut bodies = [BodyOutcome::default(); 2];
-        for (k, b) in self.bodies.iter().enumerate() {
+        for (k, b) in self.bodies[..self.count].iter().enumerate() {
             let names = &BODY_OUTPUTS[k];
             let signed = |v: N| if k == 0 { v } else { v.neg() };
             let dv = [signed(p[0].mul(&b.inv_m)), signed(p[1].mul(&b.inv_m))];
@@ -336,7 +348,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
         };
         *outcome = BodiesOutcome {
             bodies,
-            body_count: self.bodies.len(),
+            body_count: self.count,
             contact_velocity,
             impulse,
             impulse_ratio,
