@@ -150,13 +150,9 @@ async fn torsional_coefficients_are_recovered_over_http() {
 #[tokio::test]
 async fn a_planar_reconstruction_recovers_e_mu_and_the_normal() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let cars = json!([
-        {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
-         "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
-        {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
-         "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
-    ]);
-    let contact = json!({"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}});
+    let example = common::examples::cars();
+    let cars = example["bodies"].clone();
+    let contact = example["contact"].clone();
     let measured = |outcome: &Value| -> Value {
         let m = |v: &Value| json!({"value": v.as_f64().unwrap(), "uncertainty": 0.1});
         Value::Array(

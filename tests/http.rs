@@ -766,17 +766,7 @@ async fn documented_examples_are_the_servers_real_answers() {
 #[tokio::test]
 async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_oblique_one() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let cars = json!({
-        "bodies": [
-            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
-             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
-            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
-             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
-        ],
-        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
-        "restitution": 0.2,
-        "friction": 0.6
-    });
+    let cars = common::examples::cars();
     let (status, _, body) = app.post("/v1/impacts/planar", &cars).await;
     assert_eq!(status, StatusCode::OK, "{body}");
     let bodies = body["bodies"].as_array().unwrap();
@@ -831,10 +821,7 @@ async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_obliq
 #[tokio::test]
 async fn the_planar_examples_answer_what_the_examples_readme_says() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let read = |name: &str| -> Value {
-        let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
-        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-    };
+    let read = common::examples::example;
     let (status, _, cars) = app
         .post("/v1/impacts/planar", &read("planar_car_to_car.json"))
         .await;

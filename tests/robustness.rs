@@ -21,30 +21,15 @@ fn normal_request() -> Value {
     json!({"body": {"mass": 2.0}, "velocity": {"normal": -3.0}, "restitution": 0.5})
 }
 
-/// Two cars at an intersection: the planar endpoint's worked example.
-fn planar_request() -> Value {
-    json!({
-        "bodies": [
-            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
-             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
-            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
-             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
-        ],
-        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
-        "restitution": 0.2,
-        "friction": 0.6
-    })
-}
-
 #[tokio::test]
 async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx() {
     let app = spawn_app(ServiceConfig::default()).await;
     let with = |pointer: &str, value: Value| {
-        let mut r = planar_request();
+        let mut r = common::examples::cars();
         *r.pointer_mut(pointer).unwrap() = value;
         r
     };
-    let lamina = planar_request()["bodies"][0].clone();
+    let lamina = common::examples::cars()["bodies"][0].clone();
     let cases: Vec<(&str, Value, &str)> = vec![
         (
             "a third body",
@@ -111,7 +96,7 @@ async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx()
         r#"{{"bodies": [{}], "contact": {{"point": {{"x": 0, "y": 0}}, "normal": {{"x": 1, "y": 0}}}}, "restitution": 0.5}}"#,
         vec![serde_json::to_string(&lamina).unwrap(); 5000].join(",")
     );
-    let beyond = serde_json::to_string(&planar_request())
+    let beyond = serde_json::to_string(&common::examples::cars())
         .unwrap()
         .replace("1500.0", "1e400");
     for body in [many, beyond] {

@@ -577,17 +577,7 @@ async fn figure_4_torsional_branches_have_slopes_minus_ez_and_one_minus_ez() {
 async fn a_planar_sweep_takes_body_inputs_as_axes_and_body_outputs_as_columns() {
     use restitution::{BodiesImpact, Lamina, Law, Outputs, PlanarContact, Precision, solve};
     let app = spawn_app(ServiceConfig::default()).await;
-    let cars = json!({
-        "bodies": [
-            {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
-             "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
-            {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
-             "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0}
-        ],
-        "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
-        "restitution": 0.2,
-        "friction": 0.6
-    });
+    let cars = common::examples::cars();
     let body = json!({
         "case": "planar",
         "base": cars,

@@ -178,6 +178,18 @@ pub struct PlanarEnergyOut {
     pub normalized_loss: f64,
 }
 
+impl From<crate::outcome::PlanarEnergy> for PlanarEnergyOut {
+    fn from(e: crate::outcome::PlanarEnergy) -> Self {
+        PlanarEnergyOut {
+            initial: e.initial,
+            final_: e.r#final,
+            loss: e.loss,
+            max_loss: e.max_loss,
+            normalized_loss: e.normalized_loss,
+        }
+    }
+}
+
 /// The tangential law that produced a planar answer.
 #[derive(Debug, Clone, Copy, Serialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
@@ -256,13 +268,6 @@ pub struct PlanarResponse {
 impl PlanarResponse {
     /// Maps a solver outcome computed with every output in `precision`.
     pub fn from_outcome(o: &PlanarOutcome, precision: Precision) -> Self {
-        let energy = o.energy.unwrap_or(crate::outcome::PlanarEnergy {
-            initial: 0.0,
-            r#final: 0.0,
-            loss: 0.0,
-            max_loss: 0.0,
-            normalized_loss: 0.0,
-        });
         PlanarResponse {
             final_velocity: PlanarVelocityOut {
                 normal: o.final_velocity.normal,
@@ -282,13 +287,7 @@ impl PlanarResponse {
             restitution: o.restitution,
             kinetic_restitution: o.kinetic_restitution,
             regime: o.regime.into(),
-            energy: PlanarEnergyOut {
-                initial: energy.initial,
-                final_: energy.r#final,
-                loss: energy.loss,
-                max_loss: energy.max_loss,
-                normalized_loss: energy.normalized_loss,
-            },
+            energy: o.energy.unwrap_or_default().into(),
             precision: precision.into(),
         }
     }

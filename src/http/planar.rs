@@ -323,7 +323,6 @@ pub struct PlanarContactResponse {
 impl PlanarContactResponse {
     /// Maps an outcome computed with every output in `precision`.
     pub fn from_outcome(o: &BodiesOutcome, precision: Precision) -> Self {
-        let energy = o.energy.unwrap_or_default();
         PlanarContactResponse {
             bodies: o.bodies[..o.body_count].iter().map(Into::into).collect(),
             contact_velocity: ContactVelocitiesOut {
@@ -341,13 +340,7 @@ impl PlanarContactResponse {
             restitution: o.restitution,
             kinetic_restitution: o.kinetic_restitution,
             regime: o.regime.into(),
-            energy: PlanarEnergyOut {
-                initial: energy.initial,
-                final_: energy.r#final,
-                loss: energy.loss,
-                max_loss: energy.max_loss,
-                normalized_loss: energy.normalized_loss,
-            },
+            energy: o.energy.unwrap_or_default().into(),
             precision: precision.into(),
         }
     }

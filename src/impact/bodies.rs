@@ -9,7 +9,7 @@ use crate::arith::{Field, Fraction};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::model::Exact;
 use crate::model::bodies::{approach, bodies};
-use crate::outcome::{BodiesOutcome, Outputs};
+use crate::outcome::{BodiesOutcome, Outputs, PlanarEnergy};
 use crate::quantity::Value;
 
 /// A lamina in world axes.
@@ -288,7 +288,6 @@ impl Case for BodiesImpact {
     }
 
     fn output(o: &BodiesOutcome, output: Output) -> Value {
-        let energy = o.energy;
         let body = |k: usize| o.bodies.get(k).filter(|_| k < o.body_count);
         let of = |k: usize, f: fn(&crate::outcome::BodyOutcome) -> f64| body(k).map_or(f64::NAN, f);
         Value::Number(match output {
@@ -319,11 +318,13 @@ impl Case for BodiesImpact {
             Output::Restitution => o.restitution,
             Output::KineticRestitution => o.kinetic_restitution,
             Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy => energy.map_or(f64::NAN, |e| e.initial),
-            Output::FinalEnergy => energy.map_or(f64::NAN, |e| e.r#final),
-            Output::EnergyLoss => energy.map_or(f64::NAN, |e| e.loss),
-            Output::MaxEnergyLoss => energy.map_or(f64::NAN, |e| e.max_loss),
-            Output::NormalizedEnergyLoss => energy.map_or(f64::NAN, |e| e.normalized_loss),
+            Output::InitialEnergy
+            | Output::FinalEnergy
+            | Output::EnergyLoss
+            | Output::MaxEnergyLoss
+            | Output::NormalizedEnergyLoss => {
+                PlanarEnergy::output(o.energy.as_ref(), output).unwrap_or(f64::NAN)
+            }
             Output::FinalNormalVelocity
             | Output::FinalTangentialVelocity
             | Output::FinalAngularVelocity
@@ -343,11 +344,7 @@ impl Case for BodiesImpact {
         in_range: bool,
         out: &mut BodiesOutcome,
     ) -> (Result<()>, Stage) {
-        let stage = match arithmetic {
-            Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
-            Arithmetic::Exact => Stage::Compensated,
-            Arithmetic::Rational => Stage::Rational,
-        };
+        let stage = arithmetic.validating_stage();
         match self.validate() {
             Ok((law, certain)) => {
                 let impact = BodiesImpact { law, ..*self };

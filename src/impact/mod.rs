@@ -75,6 +75,17 @@ pub enum Arithmetic {
     Rational,
 }
 
+impl Arithmetic {
+    /// The stage that reports a refusal made before any arithmetic (input validation).
+    pub(crate) fn validating_stage(self) -> Stage {
+        match self {
+            Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
+            Arithmetic::Exact => Stage::Compensated,
+            Arithmetic::Rational => Stage::Rational,
+        }
+    }
+}
+
 impl From<Precision> for Arithmetic {
     fn from(p: Precision) -> Self {
         match p {

@@ -6,7 +6,7 @@ use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
-use crate::outcome::{Outputs, PlanarOutcome};
+use crate::outcome::{Outputs, PlanarEnergy, PlanarOutcome};
 use crate::quantity::Value;
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
 
@@ -381,7 +381,6 @@ impl Case for PlanarImpact {
     }
 
     fn output(o: &PlanarOutcome, output: Output) -> Value {
-        let energy = o.energy;
         Value::Number(match output {
             Output::FinalNormalVelocity => o.final_velocity.normal,
             Output::FinalTangentialVelocity => o.final_velocity.tangential,
@@ -397,11 +396,13 @@ impl Case for PlanarImpact {
             Output::Restitution => o.restitution,
             Output::KineticRestitution => o.kinetic_restitution,
             Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy => energy.map_or(f64::NAN, |e| e.initial),
-            Output::FinalEnergy => energy.map_or(f64::NAN, |e| e.r#final),
-            Output::EnergyLoss => energy.map_or(f64::NAN, |e| e.loss),
-            Output::MaxEnergyLoss => energy.map_or(f64::NAN, |e| e.max_loss),
-            Output::NormalizedEnergyLoss => energy.map_or(f64::NAN, |e| e.normalized_loss),
+            Output::InitialEnergy
+            | Output::FinalEnergy
+            | Output::EnergyLoss
+            | Output::MaxEnergyLoss
+            | Output::NormalizedEnergyLoss => {
+                PlanarEnergy::output(o.energy.as_ref(), output).unwrap_or(f64::NAN)
+            }
             Output::FinalSpin
             | Output::TorsionalImpulse
             | Output::SwitchSpin
@@ -447,11 +448,7 @@ impl Case for PlanarImpact {
         in_range: bool,
         out: &mut PlanarOutcome,
     ) -> (Result<()>, Stage) {
-        let stage = match arithmetic {
-            Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
-            Arithmetic::Exact => Stage::Compensated,
-            Arithmetic::Rational => Stage::Rational,
-        };
+        let stage = arithmetic.validating_stage();
         let refused = |e| (Err(e), stage);
         match self.body {
             PlanarBody::PointMass { mass } => match self.point_mass_inputs(mass) {

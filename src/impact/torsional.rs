@@ -216,7 +216,7 @@ impl Case for TorsionalImpact {
                 },
                 out,
             ),
-            Err(e) => (Err(e), Stage::Compensated),
+            Err(e) => (Err(e), arithmetic.validating_stage()),
         }
     }
 }
