@@ -13,7 +13,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use linear::{TangentialClosure, solve_momentum};
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
-    BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, Precision, solve,
+    BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, Precision,
+    solve,
 };
 
 #[path = "../tests/common/linear.rs"]

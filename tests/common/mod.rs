@@ -3,6 +3,7 @@
 
 pub mod accuracy;
 pub mod bodies_reference;
+pub mod examples;
 pub mod linear;
 pub mod plain;
 pub mod reference;
