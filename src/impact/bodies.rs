@@ -280,6 +280,13 @@ impl Case for BodiesImpact {
         Some(slot)
     }
 
+    /// The law's coefficients in the general fast range; the bodies and the
+    /// contact are held to this case's narrower one in [`Case::evaluate`].
+    #[inline]
+    fn all_in_fast_range(&self) -> bool {
+        self.law.coefficients().into_iter().all(super::in_fast_range)
+    }
+
     fn describe(&self) -> &'static str {
         match self.b {
             Some(_) => "two bodies",

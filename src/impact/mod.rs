@@ -137,6 +137,12 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
             .filter(|&i| self.input(i).is_some())
             .collect()
     }
+    /// Whether every input the impact reads is in the fast range ([`in_fast_range`]);
+    /// a case may check its fields directly instead of input by input.
+    #[inline]
+    fn all_in_fast_range(&self) -> bool {
+        all_in_fast_range(self, Self::INPUTS)
+    }
     /// What the impact is, in words (for messages).
     fn describe(&self) -> &'static str;
     /// One output's value in an outcome (a number is `NaN` when it was not computed).
@@ -171,7 +177,7 @@ pub fn solve_in<C: Case>(
     arithmetic: Arithmetic,
 ) -> (Result<C::Outcome>, Stage) {
     let fixed = impact.fix(&[]);
-    let in_range = arithmetic == Arithmetic::Fast && all_in_fast_range(impact, C::INPUTS);
+    let in_range = arithmetic == Arithmetic::Fast && impact.all_in_fast_range();
     let mut outcome = C::Outcome::default();
     let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
     (result.map(|()| outcome), stage)
@@ -240,8 +246,14 @@ pub fn in_fast_range(x: f64) -> bool {
     x == 0.0 || (FAST_RANGE.0..=FAST_RANGE.1).contains(&x.abs())
 }
 
+/// Whether every one of `inputs` the impact reads is in the fast range (one
+/// copy of the impact for all of them, not one per input).
+#[inline]
 fn all_in_fast_range<C: Case>(impact: &C, inputs: &[Input]) -> bool {
-    inputs.iter().all(|&i| impact.input(i).is_none_or(in_fast_range))
+    let mut copy = *impact;
+    inputs
+        .iter()
+        .all(|&i| copy.input_mut(i).is_none_or(|x| in_fast_range(*x)))
 }
 
 /// Evaluates a validated impact: `model` is the model instantiated in each
