@@ -303,7 +303,6 @@ fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Opti
 /// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f`
 /// (regime `capped`), else sliding through separation with `|μ| = f`
 /// opposing the initial slip.
-#[inline(always)]
 fn bilinear<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,

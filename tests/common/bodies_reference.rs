@@ -78,8 +78,11 @@ pub struct Scene {
     pub u: [Q; 2],
     /// `W̃`, symmetric.
     pub w: [[Q; 2]; 2],
-    /// `Σ_b |a_b1 a_b2| / I_b`, the magnitude of the terms of `W̃_12`.
-    pub w12_size: Q,
+    /// `Σ_b |n|²/m_b`, the translational part of `W̃` (times the identity).
+    pub translational: Q,
+    /// `Σ_b |a_b|²/I_b = Σ_b |r_b|² |n|²/I_b`, the size of its rotational part
+    /// whatever the direction of `n` (a rounded `n̂` moves the projections).
+    pub rotational: Q,
 }
 
 impl Scene {
@@ -94,7 +97,7 @@ impl Scene {
         }
         let mut u = [Q::zero(), Q::zero()];
         let mut w = [[Q::zero(), Q::zero()], [Q::zero(), Q::zero()]];
-        let mut w12_size = Q::zero();
+        let (mut translational, mut rotational) = (Q::zero(), Q::zero());
         for (k, b) in bodies.iter().enumerate() {
             let ub = b.point_velocity(&b.v, &b.w);
             let sign = if k == 0 { Q::one() } else { -Q::one() };
@@ -106,7 +109,8 @@ impl Scene {
             w[0][0] += &inv_m + &a[0] * &a[0] / &b.i;
             w[1][1] += &inv_m + &a[1] * &a[1] / &b.i;
             let off = &a[0] * &a[1] / &b.i;
-            w12_size += off.abs();
+            translational += &inv_m;
+            rotational += dot(&a, &a) / &b.i;
             w[0][1] += &off;
             w[1][0] += off;
         }
@@ -117,7 +121,8 @@ impl Scene {
             n2,
             u,
             w,
-            w12_size,
+            translational,
+            rotational,
         }
     }
 
@@ -130,17 +135,21 @@ impl Scene {
         &self.w[0][0] + mu * &self.w[0][1]
     }
 
-    /// The conditioning of the division by `D̃(μ)`: the magnitude of its terms over it.
-    pub fn kappa_ratio(&self, mu: &Q) -> Q {
-        (&self.w[0][0] + mu.abs() * &self.w12_size) / self.d(mu)
+    /// The magnitude of the terms of `D̃(μ)`.
+    pub fn d_size(&self, mu: &Q) -> Q {
+        &self.translational + (Q::one() + mu.abs()) * &self.rotational
     }
 
-    /// The conditioning of the 2×2 solve: `‖W̃‖² / det` with `‖W̃‖` the sum of
-    /// the magnitudes of its terms (the trace plus both off-diagonal sizes).
+    /// The conditioning of the division by `D̃(μ)`: the magnitude of its terms over it.
+    pub fn kappa_ratio(&self, mu: &Q) -> Q {
+        self.d_size(mu) / self.d(mu)
+    }
+
+    /// The conditioning of the 2×2 solve, `(‖W̃‖ / λ_min)` bounded by
+    /// `(translational + rotational)² / det W̃`.
     pub fn kappa_targets(&self) -> Q {
-        let size = &self.w[0][0] + &self.w[1][1] + &self.w12_size;
-        let size = &size * &size;
-        size / (Q::from_integer(4.into()) * self.det())
+        let size = &self.translational + &self.rotational;
+        &size * &size / self.det()
     }
 
     /// The impulse with ratio `μ` ending at `Ũ_n = −e ũ_n`; `None` when `D̃(μ) ≤ 0`.
@@ -245,16 +254,20 @@ pub struct Answer {
 
 /// Solves `impact` exactly.
 pub fn solve(impact: &BodiesImpact) -> Result<Answer, Refusal> {
-    let s = Scene::new(impact);
+    solve_scene(&Scene::new(impact), impact.law)
+}
+
+/// Solves the contact `s` under `law` exactly.
+pub fn solve_scene(s: &Scene, law: Law) -> Result<Answer, Refusal> {
     if !s.u[0].is_negative() {
         return Err(Refusal::NotApproaching);
     }
-    match impact.law {
+    match law {
         Law::Frictionless { restitution } => {
             let e = q(restitution);
             let x = s.with_ratio(&Q::zero(), &e).ok_or(Refusal::NoImpulseSolution)?;
             let kappa = s.kappa_ratio(&Q::zero());
-            finish(&s, x, e.clone(), e, "frictionless", kappa)
+            finish(s, x, e.clone(), e, "frictionless", kappa)
         }
         Law::ImpulseRatio {
             restitution,
@@ -263,18 +276,18 @@ pub fn solve(impact: &BodiesImpact) -> Result<Answer, Refusal> {
             let (e, mu) = (q(restitution), q(impulse_ratio));
             let x = s.with_ratio(&mu, &e).ok_or(Refusal::NoImpulseSolution)?;
             let kappa = s.kappa_ratio(&mu);
-            finish(&s, x, e.clone(), e, "prescribed", kappa)
+            finish(s, x, e.clone(), e, "prescribed", kappa)
         }
         Law::Friction {
             restitution,
             friction,
-        } => bilinear(&s, q(restitution), q(friction), Q::zero(), "sticking"),
+        } => bilinear(s, q(restitution), q(friction), Q::zero(), "sticking"),
         Law::TangentialRestitution {
             restitution,
             friction,
             tangential_restitution,
         } => bilinear(
-            &s,
+            s,
             q(restitution),
             q(friction),
             q(tangential_restitution),
@@ -287,7 +300,9 @@ pub fn solve(impact: &BodiesImpact) -> Result<Answer, Refusal> {
         } => {
             let (r, mu_a, mu_r) = (q(value), q(approach_impulse_ratio), q(rebound_impulse_ratio));
             // Approach: ratio μ_A until Ũ_n = 0.
-            let approach = s.with_ratio(&mu_a, &Q::zero()).ok_or(Refusal::NoImpulseSolution)?;
+            let approach = s
+                .with_ratio(&mu_a, &Q::zero())
+                .ok_or(Refusal::NoImpulseSolution)?;
             let d_a = s.d(&mu_a);
             let d_r = s.d(&mu_r);
             if r.is_positive() && !d_r.is_positive() {
@@ -295,18 +310,36 @@ pub fn solve(impact: &BodiesImpact) -> Result<Answer, Refusal> {
             }
             // Rebound: R P_n^A (n̂ + μ_R t̂).
             let qa = approach[0].clone();
-            let x = [
-                &qa * (Q::one() + &r),
-                &qa * (&mu_a + &r * &mu_r),
-            ];
+            let x = [&qa * (Q::one() + &r), &qa * (&mu_a + &r * &mu_r)];
             let e = &r * &d_r / &d_a;
             let mut kappa = s.kappa_ratio(&mu_a);
             if r.is_positive() {
                 kappa += s.kappa_ratio(&mu_r);
             }
-            finish(&s, x, e, r, "prescribed", kappa)
+            finish(s, x, e, r, "prescribed", kappa)
         }
     }
+}
+
+/// Whether the law's kept tangential branch sits exactly on its friction cap
+/// (`|P_t| = f P_n`, `P_n ≠ 0`): a decision `fast` may take either way.
+pub fn kept_on_cap(impact: &BodiesImpact) -> bool {
+    let (e, f, et) = match impact.law {
+        Law::Friction {
+            restitution,
+            friction,
+        } => (restitution, friction, 0.0),
+        Law::TangentialRestitution {
+            restitution,
+            friction,
+            tangential_restitution,
+        } => (restitution, friction, tangential_restitution),
+        _ => return false,
+    };
+    let s = Scene::new(impact);
+    let [qn, qt] = s.with_targets(&q(e), &q(et));
+    let f = q(f);
+    !qn.is_zero() && &qt * &qt == &f * &f * &qn * &qn
 }
 
 /// The bilinear law: the kept branch (target `Ũ_t = −e_t ũ_t`) when its
@@ -367,9 +400,9 @@ fn finish(s: &Scene, x: [Q; 2], e: Q, r: Q, regime: &'static str, kappa: Q) -> R
     }
     let uf = [dot(&uf_world, &s.n), dot(&uf_world, &s.t)];
     // Self-checks: the contact-space form ΔŨ = W̃ q, and the work form of the loss.
-    for k in 0..2 {
-        let du = &s.w[k][0] * &x[0] + &s.w[k][1] * &x[1];
-        assert_eq!(&uf[k] - &s.u[k], du, "ΔŨ = W̃ q");
+    for ((row, after), before) in s.w.iter().zip(&uf).zip(&s.u) {
+        let du = &row[0] * &x[0] + &row[1] * &x[1];
+        assert_eq!(after - before, du, "ΔŨ = W̃ q");
     }
     let t_loss = &t_initial - &t_final;
     let work = -(half() * (&x[0] * (&s.u[0] + &uf[0]) + &x[1] * (&s.u[1] + &uf[1])));
@@ -426,7 +459,9 @@ fn cmp_sqrt(x: &Q, y: &Q, m: &Q) -> Ordering {
     if sv != sm || sv == 0 {
         return sv.cmp(&sm);
     }
-    let (lhs, rhs) = (x * x * y, m * m);
+    // x² y vs m², in integers (denominators are positive): no gcd.
+    let lhs = x.numer() * x.numer() * y.numer() * m.denom() * m.denom();
+    let rhs = m.numer() * m.numer() * x.denom() * x.denom() * y.denom();
     if sv > 0 { lhs.cmp(&rhs) } else { rhs.cmp(&lhs) }
 }
 
@@ -515,12 +550,12 @@ pub fn is_correctly_rounded(a: f64, x: &Q) -> bool {
     is_correctly_rounded_sqrt(a, x, &Q::one())
 }
 
-/// `√y` to about 2⁻²⁰⁰ relative (`y ≥ 0`), for error measurements.
+/// `√y` to about 2⁻¹²⁰ relative (`y ≥ 0`), for error measurements.
 pub fn sqrt_approx(y: &Q) -> Q {
     if y.is_zero() {
         return Q::zero();
     }
-    let bits = 200usize;
+    let bits = 120usize;
     let num = y.numer() * y.denom() * (BigInt::one() << (2 * bits));
     let den = y.denom() * (BigInt::one() << bits);
     Q::new(num.sqrt(), den)
