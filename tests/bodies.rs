@@ -417,3 +417,44 @@ fn a_zero_normal_a_separating_contact_and_bad_bodies_are_refused_with_their_inpu
     let e = solve(&separating, Outputs::ALL, Precision::Exact).unwrap_err();
     assert_eq!(e.input().unwrap().path(), "/bodies/0/velocity");
 }
+
+/// An elastic contact whose exact loss is 0, which the f64 evaluation rounds
+/// to a small gain: the fast precision confirms refusals exactly, so it is
+/// answered (found by the survey of `tests/bodies_reference.rs`).
+#[test]
+fn an_elastic_contact_with_zero_exact_loss_is_answered_in_fast_precision_too() {
+    let lamina = |mass, inertia, velocity, angular_velocity| Lamina {
+        mass,
+        inertia,
+        position: [0.017938629739428967, -0.08798598553630042],
+        velocity,
+        angular_velocity,
+    };
+    let impact = BodiesImpact {
+        a: lamina(
+            60.20917016507488,
+            0.8882899289251217,
+            [-0.27288632102354077, -0.39792137219484414],
+            -3.074062870288868,
+        ),
+        b: Some(lamina(
+            67.18535088614338,
+            2.427146316837479,
+            [-0.2900082840147605, -0.4731399483198071],
+            -0.0,
+        )),
+        contact: PlanarContact {
+            point: [0.0, 0.0],
+            normal: [0.035877259478857934, -0.17597197107260085],
+        },
+        law: Law::TangentialRestitution {
+            restitution: 1.0,
+            friction: 3.436276980685993,
+            tangential_restitution: -1.0,
+        },
+    };
+    let exact = solve(&impact, Outputs::ALL, Precision::Exact).unwrap();
+    let fast = solve(&impact, Outputs::ALL, Precision::Fast).unwrap();
+    assert_eq!(exact.energy.unwrap().loss, 0.0);
+    assert_eq!(fast.regime, exact.regime);
+}

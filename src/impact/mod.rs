@@ -33,7 +33,7 @@ pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
 pub use self::planar::{Law, PlanarBody, PlanarImpact};
 pub use self::torsional::TorsionalImpact;
 use crate::arith::{Bounded, Compensated, Field, Fraction, OutOfRange, Undecided, Unsettled};
-use crate::error::{ImpactError, Input, Output, Result};
+use crate::error::{Input, Output, Result};
 use crate::model::{Exact, Fail};
 use crate::outcome::Outputs;
 use crate::quantity::Value;
@@ -281,15 +281,16 @@ fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
 }
 
 /// The f64 answer, or the exact one where the f64 evaluation leaves the f64
-/// range (an output that overflows, a decision on an infinity or a NaN).
+/// range (an output that overflows, a decision on an infinity or a NaN) or
+/// refuses the impact.
 #[inline(always)]
 fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     match model.run::<f64>(out) {
         Ok(()) => (Ok(()), Stage::Fast),
-        Err(Fail::Refused(ImpactError::OutputNotFinite { .. }) | Fail::Undecided(OutOfRange)) => {
-            adaptive(model, out)
-        }
-        Err(Fail::Refused(e)) => (Err(e), Stage::Fast),
+        // A refusal of the model is rare and final: the exact stages confirm
+        // it (an elastic answer whose exact loss is 0 is not refused for an
+        // f64 rounding of it above 0).
+        Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, out),
     }
 }
 
