@@ -7,7 +7,7 @@
 //! `m_B`, `I_B` for B. So `P` is the weighted least-squares solution of
 //! `y = G P` (weights `1/σ²`, the stated uncertainties taken as standard
 //! deviations), with covariance `(Gᵀ Σ⁻¹ G)⁻¹`. Then, with `U = u + W P` the
-//! final relative contact velocity (`W` as in [`crate::model`]):
+//! final relative contact velocity (`W` of `docs/physics.md`):
 //! `μ = P·t̂ / P·n̂` and `e = −U·n̂ / u·n̂` for a given normal; for a fitted
 //! normal the contact is taken to end sticking (`U·t̂ = 0`, the common
 //! velocity of reconstruction's "full" impact), so `n̂ = U/|U|` and
