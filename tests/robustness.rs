@@ -116,6 +116,33 @@ async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx()
     }
 }
 
+/// A planar sweep of 10^12 points is refused before anything is computed,
+/// naming its axes; the server keeps serving.
+#[tokio::test]
+async fn a_trillion_point_planar_sweep_is_refused_and_the_server_keeps_serving() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let million = json!({"start": 1.0, "stop": 30.0, "count": 1_000_000});
+    let body = json!({
+        "case": "planar",
+        "base": common::examples::cars(),
+        "axes": [
+            {"path": "/bodies/1/velocity/y", "linspace": million},
+            {"path": "/contact/normal/y", "linspace": million}
+        ]
+    });
+    let (status, _, problem) = timeout(BOUND, app.post("/v1/sweeps", &body)).await.unwrap();
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/axes", "{problem}");
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("1000000000000 points"),
+        "{problem}"
+    );
+    still_serving(&app).await;
+}
+
 /// Posts raw bytes; returns status, content type and the body as JSON.
 async fn raw(app: &TestApp, content_type: Option<&str>, body: Vec<u8>) -> (StatusCode, String, Value) {
     timeout(BOUND, app.post_raw("/v1/impacts/normal", content_type, body))
