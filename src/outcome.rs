@@ -3,24 +3,6 @@
 
 use crate::scene::{ContactVelocity, PlanarVelocity};
 
-impl PlanarEnergy {
-    /// One energy output of an outcome that may lack its energies (`NaN` then;
-    /// `None` for an output that is not an energy).
-    pub fn output(energy: Option<&PlanarEnergy>, output: crate::quantity::Output) -> Option<f64> {
-        use crate::quantity::Output;
-        let pick: fn(&PlanarEnergy) -> f64 = match output {
-            Output::InitialEnergy => |e| e.initial,
-            Output::FinalEnergy => |e| e.r#final,
-            Output::EnergyLoss => |e| e.loss,
-            Output::MaxEnergyLoss => |e| e.max_loss,
-            Output::NormalizedEnergyLoss => |e| e.normalized_loss,
-            // Not an energy: the caller asked for one of the five above.
-            _ => return None,
-        };
-        Some(energy.map_or(f64::NAN, pick))
-    }
-}
-
 /// Which tangential law produced a planar answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Regime {

@@ -9,7 +9,7 @@ use crate::arith::{Field, Fraction};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::model::Exact;
 use crate::model::bodies::{approach, bodies};
-use crate::outcome::{BodiesOutcome, Outputs, PlanarEnergy};
+use crate::outcome::{BodiesOutcome, Outputs};
 use crate::quantity::Value;
 
 /// A lamina in world axes.
@@ -325,13 +325,11 @@ impl Case for BodiesImpact {
             Output::Restitution => o.restitution,
             Output::KineticRestitution => o.kinetic_restitution,
             Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy
-            | Output::FinalEnergy
-            | Output::EnergyLoss
-            | Output::MaxEnergyLoss
-            | Output::NormalizedEnergyLoss => {
-                PlanarEnergy::output(o.energy.as_ref(), output).unwrap_or(f64::NAN)
-            }
+            Output::InitialEnergy => o.energy.map_or(f64::NAN, |e| e.initial),
+            Output::FinalEnergy => o.energy.map_or(f64::NAN, |e| e.r#final),
+            Output::EnergyLoss => o.energy.map_or(f64::NAN, |e| e.loss),
+            Output::MaxEnergyLoss => o.energy.map_or(f64::NAN, |e| e.max_loss),
+            Output::NormalizedEnergyLoss => o.energy.map_or(f64::NAN, |e| e.normalized_loss),
             Output::FinalNormalVelocity
             | Output::FinalTangentialVelocity
             | Output::FinalAngularVelocity

@@ -6,7 +6,7 @@ use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
-use crate::outcome::{Outputs, PlanarEnergy, PlanarOutcome};
+use crate::outcome::{Outputs, PlanarOutcome};
 use crate::quantity::Value;
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
 
@@ -441,13 +441,11 @@ impl Case for PlanarImpact {
             Output::Restitution => o.restitution,
             Output::KineticRestitution => o.kinetic_restitution,
             Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy
-            | Output::FinalEnergy
-            | Output::EnergyLoss
-            | Output::MaxEnergyLoss
-            | Output::NormalizedEnergyLoss => {
-                PlanarEnergy::output(o.energy.as_ref(), output).unwrap_or(f64::NAN)
-            }
+            Output::InitialEnergy => o.energy.map_or(f64::NAN, |e| e.initial),
+            Output::FinalEnergy => o.energy.map_or(f64::NAN, |e| e.r#final),
+            Output::EnergyLoss => o.energy.map_or(f64::NAN, |e| e.loss),
+            Output::MaxEnergyLoss => o.energy.map_or(f64::NAN, |e| e.max_loss),
+            Output::NormalizedEnergyLoss => o.energy.map_or(f64::NAN, |e| e.normalized_loss),
             Output::FinalSpin
             | Output::TorsionalImpulse
             | Output::SwitchSpin
