@@ -69,10 +69,10 @@ pub enum ImpactError {
         /// The offending input.
         input: Input,
     },
-    /// The contact point is not approaching the barrier, so there is no impact.
+    /// The contact point is not approaching the barrier (or body B), so there is no impact.
     #[error(
-        "the contact is not approaching the barrier: the normal contact velocity is {normal_contact_velocity}, \
-         and an impact needs it below 0"
+        "the contact is not approaching: the normal contact velocity (relative to the barrier or to body B, \
+         along the normal out of it) is {normal_contact_velocity}, and an impact needs it below 0"
     )]
     NotApproaching {
         /// The input that sets the approach velocity.

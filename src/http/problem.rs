@@ -29,7 +29,7 @@ pub struct IntervalDto {
     "type": "urn:restitution:problem:not-approaching",
     "title": "Contact is not approaching",
     "status": 422,
-    "detail": "the contact is not approaching the barrier: the normal contact velocity is 1, and an impact needs it below 0",
+    "detail": "the contact is not approaching: the normal contact velocity (relative to the barrier or to body B, along the normal out of it) is 1, and an impact needs it below 0",
     "pointer": "/velocity/normal"
 }))]
 pub struct Problem {
