@@ -621,6 +621,22 @@ async fn a_planar_sweep_takes_body_inputs_as_axes_and_body_outputs_as_columns() 
         assert_eq!(row[2].as_f64(), Some(o.bodies[1].delta_v), "{row}");
         assert_eq!(row[3].as_str(), Some(o.regime.as_str()), "{row}");
     }
+    // A barrier base's columns (all outputs) leave body B out.
+    let mut all = body.clone();
+    all["base"]["bodies"] = json!([cars["bodies"][0]]);
+    all["axes"] = json!([{"path": "/bodies/0/velocity/x", "values": [10.0, 20.0]}]);
+    all.as_object_mut().unwrap().remove("outputs");
+    let table = json_table(&app, &all).await;
+    let columns: Vec<&str> = table["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap())
+        .collect();
+    assert!(
+        columns.contains(&"/bodies/0/delta_v") && !columns.iter().any(|c| c.starts_with("/bodies/1/")),
+        "{columns:?}"
+    );
     // An axis on body B of a barrier base names the inputs the base reads.
     let mut barrier = body.clone();
     barrier["base"]["bodies"] = json!([cars["bodies"][0]]);

@@ -8,7 +8,7 @@ use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::{Field, Fraction};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::model::Exact;
-use crate::model::bodies::{approach, bodies};
+use crate::model::bodies::{BODY_OUTPUTS, approach, bodies};
 use crate::outcome::{BodiesOutcome, Outputs};
 use crate::quantity::Value;
 
@@ -285,6 +285,11 @@ impl Case for BodiesImpact {
     #[inline]
     fn all_in_fast_range(&self) -> bool {
         self.law.coefficients().into_iter().all(super::in_fast_range)
+    }
+
+    /// Body B's outputs only when there is a body B.
+    fn answers(&self, output: Output) -> bool {
+        self.b.is_some() || !BODY_OUTPUTS[1].contains(&output)
     }
 
     fn describe(&self) -> &'static str {

@@ -143,6 +143,12 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     fn all_in_fast_range(&self) -> bool {
         all_in_fast_range(self, Self::INPUTS)
     }
+    /// Whether this impact answers `output` (a barrier has no body B).
+    #[inline]
+    fn answers(&self, output: Output) -> bool {
+        let _ = output;
+        true
+    }
     /// What the impact is, in words (for messages).
     fn describe(&self) -> &'static str;
     /// One output's value in an outcome (a number is `NaN` when it was not computed).

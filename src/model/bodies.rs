@@ -200,7 +200,7 @@ impl<N: Field> Scene<N> {
 }
 
 /// The outputs of each body, in response order.
-const BODY_OUTPUTS: [[Output; 7]; 2] = [
+pub(crate) const BODY_OUTPUTS: [[Output; 7]; 2] = [
     [
         Output::FinalVelocityAX,
         Output::FinalVelocityAY,

@@ -227,9 +227,10 @@ pub(super) fn axis_inputs<C: Case>(axes: &[AxisDto], base: &C) -> Result<Vec<Inp
 }
 
 /// Chosen columns: every output of the case equal to a pointer or under it.
-pub(super) fn output_columns<C: Case>(outputs: Option<&[String]>) -> Result<Vec<Output>, ApiError> {
+pub(super) fn output_columns<C: Case>(base: &C, outputs: Option<&[String]>) -> Result<Vec<Output>, ApiError> {
+    let answered: Vec<Output> = C::OUTPUTS.iter().copied().filter(|&o| base.answers(o)).collect();
     let Some(outputs) = outputs else {
-        return Ok(C::OUTPUTS.to_vec());
+        return Ok(answered);
     };
     if outputs.is_empty() {
         return Err(structure(
@@ -240,7 +241,7 @@ pub(super) fn output_columns<C: Case>(outputs: Option<&[String]>) -> Result<Vec<
     }
     let mut columns = Vec::new();
     for (i, pointer) in outputs.iter().enumerate() {
-        let matched: Vec<Output> = C::OUTPUTS
+        let matched: Vec<Output> = answered
             .iter()
             .filter(|o| {
                 let name = o.path();
@@ -253,7 +254,7 @@ pub(super) fn output_columns<C: Case>(outputs: Option<&[String]>) -> Result<Vec<
             .copied()
             .collect();
         if matched.is_empty() {
-            let known: Vec<&str> = C::OUTPUTS.iter().map(|o| o.path()).collect();
+            let known: Vec<&str> = answered.iter().map(|o| o.path()).collect();
             return Err(structure(
                 format!("/outputs/{i}"),
                 "Invalid sweep output",
@@ -278,7 +279,7 @@ pub(super) fn sweep<C: Case>(
 ) -> Result<Sweep<CaseSweep<C>>, ApiError> {
     let values = axis_values(&request.axes)?;
     let inputs = axis_inputs(&request.axes, &base)?;
-    let columns = output_columns::<C>(request.outputs.as_deref())?;
+    let columns = output_columns(&base, request.outputs.as_deref())?;
     let combine = match request.combine {
         CombineDto::Product => crate::sweep::Combine::Product,
         CombineDto::Zip => crate::sweep::Combine::Zip,
