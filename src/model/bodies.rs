@@ -61,12 +61,24 @@ pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
 /// `u_b · n` of one body.
 #[inline(always)]
 fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
+    let (_, u) = contact_point_velocity(l, c);
+    along(&u, n)
+}
+
+/// `r = C − G` and the contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of one body.
+#[inline(always)]
+fn contact_point_velocity<N: Field>(l: &Lamina, c: &[N; 2]) -> ([N; 2], [N; 2]) {
     let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
     let w = N::of(l.angular_velocity);
-    // u = (v_x − ω r_y, v_y + ω r_x)
     let ux = w.neg().mul_add(&r[1], &N::of(l.velocity[0]));
     let uy = w.mul_add(&r[0], &N::of(l.velocity[1]));
-    ux.mul_add(&n[0], &uy.mul(&n[1]))
+    (r, [ux, uy])
+}
+
+/// `u · d`, fused as the approach decision forms it.
+#[inline(always)]
+fn along<N: Field>(u: &[N; 2], d: &[N; 2]) -> N {
+    u[0].mul_add(&d[0], &u[1].mul(&d[1]))
 }
 
 /// A validated contact in the field: its contact space and its bodies.
@@ -95,12 +107,7 @@ impl<N: Field> Scene<N> {
         let t = [n[1].neg(), n[0].clone()];
         let one = N::of(1.0);
         let body = |l: &Lamina| {
-            let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
-            let w = N::of(l.angular_velocity);
-            let v = [N::of(l.velocity[0]), N::of(l.velocity[1])];
-            let ux = w.neg().mul_add(&r[1], &v[0]);
-            let uy = w.mul_add(&r[0], &v[1]);
-            let ut = ux.mul_add(&t[0], &uy.mul(&t[1]));
+            let (r, u) = contact_point_velocity(l, &c);
             let m = N::of(l.mass);
             let inertia = N::of(l.inertia);
             let body = Body {
@@ -112,22 +119,23 @@ impl<N: Field> Scene<N> {
                 ],
                 m,
                 inertia,
-                v,
-                w,
+                v: [N::of(l.velocity[0]), N::of(l.velocity[1])],
+                w: N::of(l.angular_velocity),
             };
-            (body, ut)
+            (body, along(&u, &n), along(&u, &t))
         };
-        let (a, mut ut) = body(&fast.a);
+        // ũ_n by the operations of `approach`, which validation decided on.
+        let (a, mut un, mut ut) = body(&fast.a);
         let (bodies, count) = match &fast.b {
             Some(l) => {
-                let (b, but) = body(l);
+                let (b, bun, but) = body(l);
+                un = un.sub(&bun);
                 ut = ut.sub(&but);
                 ([a, b], 2)
             }
             None => ([a.clone(), a], 1),
         };
         let bodies_in = &bodies[..count];
-        let un = approach::<N>(fast);
         let mut inv_mass = bodies_in[0].inv_m.clone();
         let mut wnn = N::of(0.0);
         let mut wnt = N::of(0.0);
