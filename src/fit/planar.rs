@@ -82,9 +82,13 @@ pub fn planar(
     fit_normal: bool,
 ) -> Result<PlanarFit, FitError> {
     if bodies.is_empty() || bodies.len() > 2 || measured.len() != bodies.len() {
-        return Err(FitError::TooFewPoints {
-            needed: bodies.len().clamp(1, 2),
-            got: measured.len(),
+        return Err(FitError::Undetermined {
+            parameter: "impulse",
+            why: format!(
+                "give 1 or 2 bodies and one measured change per body, not {} bodies and {} changes",
+                bodies.len(),
+                measured.len()
+            ),
         });
     }
     let scene = BodiesImpact {
