@@ -114,6 +114,67 @@ pub enum ImpactError {
         /// The offending input.
         input: Input,
     },
+    /// An inertia tensor that is not symmetric positive definite.
+    #[error(
+        "{input} must be a symmetric positive definite tensor: its leading principal minor of order {order} \
+         (I_xx, I_xx I_yy − I_xy², det I) is {minor}, not positive"
+    )]
+    NotPositiveDefinite {
+        /// The tensor.
+        input: Input,
+        /// The order (1–3) of the first leading minor that is not positive.
+        order: u8,
+        /// Its value (rounded).
+        minor: f64,
+    },
+    /// `D ≤ 0` in space: the branches the law chose have no positive normal impulse.
+    #[error(
+        "no impulse solution: under the law and branches that apply ({input}), the normal impulse would be \
+         zero, negative or infinite (D ≤ 0), so the rigid-body impulse model has no physical answer"
+    )]
+    NoImpulse {
+        /// The law member whose branch has no solution.
+        input: Input,
+    },
+    /// An answer in space that would create kinetic energy.
+    #[error(
+        "the answer under {input} would create kinetic energy (T_L = {energy_loss} < 0), which is not physical"
+    )]
+    EnergyCreated {
+        /// The law member whose answer creates energy.
+        input: Input,
+        /// The (negative) energy loss of the rejected answer.
+        energy_loss: f64,
+    },
+    /// A prescribed impulse ratio with no direction to act in.
+    #[error(
+        "{input} > 0 has no direction: there is no initial slip and the sticking impulse has no tangential part, \
+         so the direction of the tangential impulse is undefined"
+    )]
+    NoSlipDirection {
+        /// The prescribed ratio.
+        input: Input,
+    },
+    /// A planar-only law asked of a contact in space.
+    #[error(
+        "{input} is a planar law: in space use restitution with friction, impulse_ratio or tangential_restitution"
+    )]
+    PlanarOnly {
+        /// The law member.
+        input: Input,
+    },
+    /// The tangential and twist laws do not single out one combination of branches.
+    #[error(
+        "the regime is not unique: {combinations} combinations of the tangential and twist branches satisfy \
+         their conditions, and exactly one must (each kept branch within its cap, each sliding branch only \
+         where its kept branch fails)"
+    )]
+    NotUnique {
+        /// The twist law.
+        input: Input,
+        /// How many combinations were valid (0, or 2 and more).
+        combinations: usize,
+    },
     /// An output's exact value does not fit in a finite f64.
     #[error("the output {output} is not representable as a finite double for these inputs")]
     OutputNotFinite {
@@ -133,7 +194,13 @@ impl ImpactError {
             | ImpactError::ZeroVector { input }
             | ImpactError::NotApproaching { input, .. }
             | ImpactError::NoImpulseSolution { input, .. }
-            | ImpactError::CreatesEnergy { input, .. } => Some(*input),
+            | ImpactError::CreatesEnergy { input, .. }
+            | ImpactError::NotPositiveDefinite { input, .. }
+            | ImpactError::NoImpulse { input }
+            | ImpactError::EnergyCreated { input, .. }
+            | ImpactError::NoSlipDirection { input }
+            | ImpactError::PlanarOnly { input }
+            | ImpactError::NotUnique { input, .. } => Some(*input),
             ImpactError::OutputNotFinite { .. } => None,
         }
     }
@@ -156,7 +223,14 @@ impl ImpactError {
             ImpactError::ZeroVector { .. } => "Direction is zero",
             ImpactError::NotApproaching { .. } => "Contact is not approaching",
             ImpactError::NoImpulseSolution { .. } => "No impulse solution",
-            ImpactError::CreatesEnergy { .. } => "Answer would create energy",
+            ImpactError::CreatesEnergy { .. } | ImpactError::EnergyCreated { .. } => {
+                "Answer would create energy"
+            }
+            ImpactError::NotPositiveDefinite { .. } => "Inertia tensor is not positive definite",
+            ImpactError::NoImpulse { .. } => "No impulse solution",
+            ImpactError::NoSlipDirection { .. } => "Sliding direction is undefined",
+            ImpactError::NotUnique { .. } => "Regime is not unique",
+            ImpactError::PlanarOnly { .. } => "Law is planar only",
             ImpactError::OutputNotFinite { .. } => "Output is not finite",
         }
     }
@@ -171,7 +245,12 @@ impl ImpactError {
             ImpactError::ZeroVector { .. } => "zero-vector",
             ImpactError::NotApproaching { .. } => "not-approaching",
             ImpactError::NoImpulseSolution { .. } => "no-impulse-solution",
-            ImpactError::CreatesEnergy { .. } => "creates-energy",
+            ImpactError::CreatesEnergy { .. } | ImpactError::EnergyCreated { .. } => "creates-energy",
+            ImpactError::NotPositiveDefinite { .. } => "not-positive-definite",
+            ImpactError::NoImpulse { .. } => "no-impulse-solution",
+            ImpactError::NoSlipDirection { .. } => "no-slip-direction",
+            ImpactError::NotUnique { .. } => "not-unique",
+            ImpactError::PlanarOnly { .. } => "planar-only",
             ImpactError::OutputNotFinite { .. } => "output-not-finite",
         }
     }

@@ -49,10 +49,11 @@ pub mod http;
 
 pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
 pub use impact::{
-    BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, TorsionalImpact,
-    solve,
+    BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, RigidBody,
+    SpatialContact, SpatialImpact, TorsionalImpact, Twist, solve,
 };
 pub use outcome::{
-    BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, TorsionalOutcome, WorldImpulse,
+    BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, SpatialBodyOutcome, SpatialOutcome,
+    TorsionalOutcome, TorsionalRegime, WorldImpulse,
 };
 pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};

@@ -230,3 +230,81 @@ pub struct BodiesOutcome {
     /// Energies of the pair, when asked for.
     pub energy: Option<PlanarEnergy>,
 }
+
+/// What one body of a contact in space answers.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialBodyOutcome {
+    /// Final velocity of the mass centre.
+    pub velocity: [f64; 3],
+    /// Final angular velocity.
+    pub angular_velocity: [f64; 3],
+    /// `ΔV = V − v`.
+    pub velocity_change: [f64; 3],
+    /// `|ΔV|`.
+    pub delta_v: f64,
+    /// `ΔΩ = Ω − ω`.
+    pub angular_velocity_change: [f64; 3],
+}
+
+/// The relative contact velocity in space at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialContactVelocity {
+    /// `u·n̂`.
+    pub normal: f64,
+    /// The slip `u − (u·n̂) n̂`, a world vector.
+    pub tangential: [f64; 3],
+    /// The relative spin about the normal `(ω_A − ω_B)·n̂`.
+    pub spin: f64,
+}
+
+/// Initial and final relative contact velocities in space.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialContactVelocities {
+    /// Before the impact.
+    pub initial: SpatialContactVelocity,
+    /// After it.
+    pub r#final: SpatialContactVelocity,
+}
+
+/// The impulse and couple on body A in space (`−P`, `−M` on B).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialImpulse {
+    /// `P_n = P·n̂ > 0`.
+    pub normal: f64,
+    /// `P_t = P − P_n n̂`, a world vector.
+    pub tangential: [f64; 3],
+    /// The couple `M` about `n̂` (0 without a twist law).
+    pub torsional: f64,
+    /// World x of `P`.
+    pub x: f64,
+    /// World y of `P`.
+    pub y: f64,
+    /// World z of `P`.
+    pub z: f64,
+}
+
+/// The outcome of a contact in space between body A and body B or a barrier.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialOutcome {
+    /// Body A, and body B when there is one.
+    pub bodies: [SpatialBodyOutcome; 2],
+    /// 1 (a barrier) or 2.
+    pub body_count: usize,
+    /// Relative contact velocities.
+    pub contact_velocity: SpatialContactVelocities,
+    /// The impulse and couple on A.
+    pub impulse: SpatialImpulse,
+    /// `|P_t| / P_n`.
+    pub impulse_ratio: f64,
+    /// `|P_t| / P_n` of the sticking impulse, when asked for or sticking
+    /// (`None` also where that impulse has `P_n = 0`).
+    pub critical_impulse_ratio: Option<f64>,
+    /// `e`.
+    pub restitution: f64,
+    /// The tangential law's branch.
+    pub regime: Regime,
+    /// The twist law's branch, with a twist law.
+    pub torsional_regime: Option<TorsionalRegime>,
+    /// Energies of the pair (with the couple's work), when asked for.
+    pub energy: Option<PlanarEnergy>,
+}

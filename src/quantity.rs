@@ -133,6 +133,56 @@ quantities! {
         VelocityA => ("v_A", "velocity of body A", "/bodies/0/velocity"),
         /// The contact normal as a whole.
         Normal => ("n", "contact normal", "/contact/normal"),
+        /// Inertia tensor entry `I_xx` of body A.
+        InertiaAXX => ("I_Axx", "inertia tensor entry xx of body A", "/bodies/0/inertia/xx"),
+        /// Inertia tensor entry `I_yy` of body A.
+        InertiaAYY => ("I_Ayy", "inertia tensor entry yy of body A", "/bodies/0/inertia/yy"),
+        /// Inertia tensor entry `I_zz` of body A.
+        InertiaAZZ => ("I_Azz", "inertia tensor entry zz of body A", "/bodies/0/inertia/zz"),
+        /// Inertia tensor entry `I_xy` of body A.
+        InertiaAXY => ("I_Axy", "inertia tensor entry xy of body A", "/bodies/0/inertia/xy"),
+        /// Inertia tensor entry `I_xz` of body A.
+        InertiaAXZ => ("I_Axz", "inertia tensor entry xz of body A", "/bodies/0/inertia/xz"),
+        /// Inertia tensor entry `I_yz` of body A.
+        InertiaAYZ => ("I_Ayz", "inertia tensor entry yz of body A", "/bodies/0/inertia/yz"),
+        /// z of body A's mass centre.
+        PositionAZ => ("z_A", "z of body A", "/bodies/0/position/z"),
+        /// Initial z velocity of body A.
+        VelocityAZ => ("v_Az", "z velocity of body A", "/bodies/0/velocity/z"),
+        /// Initial x angular velocity of body A (space).
+        AngularVelocityAX => ("ω_Ax", "x angular velocity of body A", "/bodies/0/angular_velocity/x"),
+        /// Initial y angular velocity of body A (space).
+        AngularVelocityAY => ("ω_Ay", "y angular velocity of body A", "/bodies/0/angular_velocity/y"),
+        /// Initial z angular velocity of body A (space).
+        AngularVelocityAZ => ("ω_Az", "z angular velocity of body A", "/bodies/0/angular_velocity/z"),
+        /// Inertia tensor entry `I_xx` of body B.
+        InertiaBXX => ("I_Bxx", "inertia tensor entry xx of body B", "/bodies/1/inertia/xx"),
+        /// Inertia tensor entry `I_yy` of body B.
+        InertiaBYY => ("I_Byy", "inertia tensor entry yy of body B", "/bodies/1/inertia/yy"),
+        /// Inertia tensor entry `I_zz` of body B.
+        InertiaBZZ => ("I_Bzz", "inertia tensor entry zz of body B", "/bodies/1/inertia/zz"),
+        /// Inertia tensor entry `I_xy` of body B.
+        InertiaBXY => ("I_Bxy", "inertia tensor entry xy of body B", "/bodies/1/inertia/xy"),
+        /// Inertia tensor entry `I_xz` of body B.
+        InertiaBXZ => ("I_Bxz", "inertia tensor entry xz of body B", "/bodies/1/inertia/xz"),
+        /// Inertia tensor entry `I_yz` of body B.
+        InertiaBYZ => ("I_Byz", "inertia tensor entry yz of body B", "/bodies/1/inertia/yz"),
+        /// z of body B's mass centre.
+        PositionBZ => ("z_B", "z of body B", "/bodies/1/position/z"),
+        /// Initial z velocity of body B.
+        VelocityBZ => ("v_Bz", "z velocity of body B", "/bodies/1/velocity/z"),
+        /// Initial x angular velocity of body B (space).
+        AngularVelocityBX => ("ω_Bx", "x angular velocity of body B", "/bodies/1/angular_velocity/x"),
+        /// Initial y angular velocity of body B (space).
+        AngularVelocityBY => ("ω_By", "y angular velocity of body B", "/bodies/1/angular_velocity/y"),
+        /// Initial z angular velocity of body B (space).
+        AngularVelocityBZ => ("ω_Bz", "z angular velocity of body B", "/bodies/1/angular_velocity/z"),
+        /// z of the contact point.
+        ContactZ => ("z_C", "z of the contact point", "/contact/point/z"),
+        /// z of the contact normal.
+        NormalZ => ("n_z", "z of the contact normal", "/contact/normal/z"),
+        /// The twist law as a whole (space).
+        Torsion => ("twist", "twist law", "/torsion"),
     }
 }
 
@@ -221,6 +271,64 @@ quantities! {
         DeltaVB => ("|ΔV_B|", "delta-V of body B", "/bodies/1/delta_v"),
         /// Angular velocity change of body B.
         AngularVelocityChangeB => ("ΔΩ_B", "angular velocity change of body B", "/bodies/1/angular_velocity_change"),
+        /// Final z velocity of body A (space).
+        FinalVelocityAZ => ("V_Az", "final z velocity of body A", "/bodies/0/velocity/z"),
+        /// Final x angular velocity of body A (space).
+        FinalAngularVelocityAX => ("Ω_Ax", "final x angular velocity of body A", "/bodies/0/angular_velocity/x"),
+        /// Final y angular velocity of body A (space).
+        FinalAngularVelocityAY => ("Ω_Ay", "final y angular velocity of body A", "/bodies/0/angular_velocity/y"),
+        /// Final z angular velocity of body A (space).
+        FinalAngularVelocityAZ => ("Ω_Az", "final z angular velocity of body A", "/bodies/0/angular_velocity/z"),
+        /// Z velocity change of body A (space).
+        VelocityChangeAZ => ("ΔV_Az", "z velocity change of body A", "/bodies/0/velocity_change/z"),
+        /// X angular velocity change of body A (space).
+        AngularVelocityChangeAX => ("ΔΩ_Ax", "x angular velocity change of body A", "/bodies/0/angular_velocity_change/x"),
+        /// Y angular velocity change of body A (space).
+        AngularVelocityChangeAY => ("ΔΩ_Ay", "y angular velocity change of body A", "/bodies/0/angular_velocity_change/y"),
+        /// Z angular velocity change of body A (space).
+        AngularVelocityChangeAZ => ("ΔΩ_Az", "z angular velocity change of body A", "/bodies/0/angular_velocity_change/z"),
+        /// Final z velocity of body B (space).
+        FinalVelocityBZ => ("V_Bz", "final z velocity of body B", "/bodies/1/velocity/z"),
+        /// Final x angular velocity of body B (space).
+        FinalAngularVelocityBX => ("Ω_Bx", "final x angular velocity of body B", "/bodies/1/angular_velocity/x"),
+        /// Final y angular velocity of body B (space).
+        FinalAngularVelocityBY => ("Ω_By", "final y angular velocity of body B", "/bodies/1/angular_velocity/y"),
+        /// Final z angular velocity of body B (space).
+        FinalAngularVelocityBZ => ("Ω_Bz", "final z angular velocity of body B", "/bodies/1/angular_velocity/z"),
+        /// Z velocity change of body B (space).
+        VelocityChangeBZ => ("ΔV_Bz", "z velocity change of body B", "/bodies/1/velocity_change/z"),
+        /// X angular velocity change of body B (space).
+        AngularVelocityChangeBX => ("ΔΩ_Bx", "x angular velocity change of body B", "/bodies/1/angular_velocity_change/x"),
+        /// Y angular velocity change of body B (space).
+        AngularVelocityChangeBY => ("ΔΩ_By", "y angular velocity change of body B", "/bodies/1/angular_velocity_change/y"),
+        /// Z angular velocity change of body B (space).
+        AngularVelocityChangeBZ => ("ΔΩ_Bz", "z angular velocity change of body B", "/bodies/1/angular_velocity_change/z"),
+        /// Initial tangential contact velocity x (space).
+        InitialTangentialContactVelocityX => ("u_tx", "initial tangential contact velocity x", "/contact_velocity/initial/tangential/x"),
+        /// Initial tangential contact velocity y (space).
+        InitialTangentialContactVelocityY => ("u_ty", "initial tangential contact velocity y", "/contact_velocity/initial/tangential/y"),
+        /// Initial tangential contact velocity z (space).
+        InitialTangentialContactVelocityZ => ("u_tz", "initial tangential contact velocity z", "/contact_velocity/initial/tangential/z"),
+        /// Initial relative spin about the normal (space).
+        InitialContactSpin => ("s", "initial relative spin about the normal", "/contact_velocity/initial/spin"),
+        /// Final tangential contact velocity x (space).
+        FinalTangentialContactVelocityX => ("U_tx", "final tangential contact velocity x", "/contact_velocity/final/tangential/x"),
+        /// Final tangential contact velocity y (space).
+        FinalTangentialContactVelocityY => ("U_ty", "final tangential contact velocity y", "/contact_velocity/final/tangential/y"),
+        /// Final tangential contact velocity z (space).
+        FinalTangentialContactVelocityZ => ("U_tz", "final tangential contact velocity z", "/contact_velocity/final/tangential/z"),
+        /// Final relative spin about the normal (space).
+        FinalContactSpin => ("S", "final relative spin about the normal", "/contact_velocity/final/spin"),
+        /// Tangential impulse x (space).
+        TangentialImpulseX => ("P_tx", "tangential impulse x", "/impulse/tangential/x"),
+        /// Tangential impulse y (space).
+        TangentialImpulseY => ("P_ty", "tangential impulse y", "/impulse/tangential/y"),
+        /// Tangential impulse z (space).
+        TangentialImpulseZ => ("P_tz", "tangential impulse z", "/impulse/tangential/z"),
+        /// Z impulse (space).
+        ImpulseZ => ("P_z", "z impulse", "/impulse/z"),
+        /// Torsional regime (space).
+        TorsionalRegime => ("torsional_regime", "torsional regime", "/torsional_regime"),
     }
 }
 

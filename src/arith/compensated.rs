@@ -113,6 +113,8 @@ pub(crate) enum Unsettled {
     /// The value lies too close to zero or to a rounding midpoint for the
     /// bound: possibly exactly there, which only exact tracking decides.
     Close,
+    /// The model takes a square root, which only the last stage ([`super::Surd`]) holds exactly.
+    Root,
 }
 
 /// A compensated value with its static bound; see the module documentation.

@@ -281,6 +281,35 @@ pub(crate) struct Fraction {
 }
 
 impl Fraction {
+    /// An integer.
+    pub(super) fn integer(n: &BigInt) -> Self {
+        Fraction::new(n.clone(), BigInt::one())
+    }
+
+    /// `n / 2^k` (`k` of either sign).
+    pub(super) fn dyadic(n: BigInt, k: i64) -> Self {
+        if k >= 0 {
+            Fraction::new(n, BigInt::one() << (k as u64))
+        } else {
+            Fraction::new(n << ((-k) as u64), BigInt::one())
+        }
+    }
+
+    /// `num / den` (`den > 0`).
+    pub(super) fn from_parts(num: BigInt, den: BigInt) -> Self {
+        Fraction::new(num, den)
+    }
+
+    /// The numerator and the (positive) denominator.
+    pub(super) fn parts(&self) -> (&BigInt, &BigInt) {
+        (&self.num, &self.den)
+    }
+
+    /// `log₂ |x|` within one (`x ≠ 0`): the difference of the bit lengths.
+    pub(super) fn log2_estimate(&self) -> i64 {
+        self.num.bits() as i64 - self.den.bits() as i64
+    }
+
     fn new(num: BigInt, den: BigInt) -> Self {
         if num.is_zero() {
             return Fraction {

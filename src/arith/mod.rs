@@ -12,7 +12,9 @@
 //!   (ill-conditioned quotients, exponents near the ends of the range);
 //! - `Bounded<true>`: the same keeping exact sums and products exact (exact
 //!   rounding ties and cancelled zeros formed without a quotient);
-//! - [`Fraction`]s of big integers, which always decide.
+//! - [`Surd`]s, `a + b √g` in exact fractions of big integers, which always
+//!   decide (every answer holds at most one square root, that of its sliding
+//!   direction in space).
 //!
 //! Each is more decisive and dearer than the last; the order in which `exact`
 //! precision tries them is in [`crate::impact`].
@@ -20,7 +22,9 @@
 mod bounded;
 mod compensated;
 mod field;
+mod surd;
 
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, Fraction, OutOfRange, Undecided};
+pub(crate) use surd::{Radical, Surd};

@@ -5,7 +5,7 @@
 
 use super::planar::Law;
 use super::{Arithmetic, Case, Model, Stage, evaluate};
-use crate::arith::{Field, Fraction};
+use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::model::Exact;
 use crate::model::bodies::{BODY_OUTPUTS, approach, bodies};
@@ -185,7 +185,7 @@ struct Pair<'a> {
 
 impl Model<BodiesOutcome> for Pair<'_> {
     #[inline(always)]
-    fn run<N: Field>(&self, out: &mut BodiesOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut BodiesOutcome) -> Exact<N, ()> {
         bodies::<N>(self.impact, self.outputs, out)
     }
 }
@@ -340,7 +340,36 @@ impl Case for BodiesImpact {
             | Output::FinalAngularVelocity
             | Output::FinalSpin
             | Output::TorsionalImpulse
-            | Output::SwitchSpin => f64::NAN,
+            | Output::SwitchSpin
+            | Output::FinalVelocityAZ
+            | Output::FinalAngularVelocityAX
+            | Output::FinalAngularVelocityAY
+            | Output::FinalAngularVelocityAZ
+            | Output::VelocityChangeAZ
+            | Output::AngularVelocityChangeAX
+            | Output::AngularVelocityChangeAY
+            | Output::AngularVelocityChangeAZ
+            | Output::FinalVelocityBZ
+            | Output::FinalAngularVelocityBX
+            | Output::FinalAngularVelocityBY
+            | Output::FinalAngularVelocityBZ
+            | Output::VelocityChangeBZ
+            | Output::AngularVelocityChangeBX
+            | Output::AngularVelocityChangeBY
+            | Output::AngularVelocityChangeBZ
+            | Output::InitialTangentialContactVelocityX
+            | Output::InitialTangentialContactVelocityY
+            | Output::InitialTangentialContactVelocityZ
+            | Output::InitialContactSpin
+            | Output::FinalTangentialContactVelocityX
+            | Output::FinalTangentialContactVelocityY
+            | Output::FinalTangentialContactVelocityZ
+            | Output::FinalContactSpin
+            | Output::TangentialImpulseX
+            | Output::TangentialImpulseY
+            | Output::TangentialImpulseZ
+            | Output::ImpulseZ
+            | Output::TorsionalRegime => f64::NAN,
         })
     }
 

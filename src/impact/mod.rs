@@ -24,6 +24,7 @@
 
 mod bodies;
 mod planar;
+mod spatial;
 mod torsional;
 
 use std::convert::Infallible;
@@ -31,8 +32,9 @@ use std::fmt;
 
 pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
 pub use self::planar::{Law, PlanarBody, PlanarImpact};
+pub use self::spatial::{RigidBody, SpatialContact, SpatialImpact, Twist};
 pub use self::torsional::TorsionalImpact;
-use crate::arith::{Bounded, Compensated, Field, Fraction, OutOfRange, Undecided, Unsettled};
+use crate::arith::{Bounded, Compensated, OutOfRange, Radical, Surd, Undecided, Unsettled};
 use crate::error::{Input, Output, Result};
 use crate::model::{Exact, Fail};
 use crate::outcome::Outputs;
@@ -283,7 +285,7 @@ pub(crate) fn evaluate<T>(
 /// The model in exact fractions alone.
 #[inline(never)]
 fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
-    (decided(model.run::<Fraction>(out)), Stage::Rational)
+    (decided(model.run::<Surd>(out)), Stage::Rational)
 }
 
 /// The f64 answer, or the exact one where the f64 evaluation leaves the f64
@@ -304,7 +306,7 @@ fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
 pub(crate) trait Model<T> {
     /// Evaluates the model in `N`, writing the outcome to `out` (whole, or
     /// not at all when it fails).
-    fn run<N: Field>(&self, out: &mut T) -> Exact<N, ()>;
+    fn run<N: Radical>(&self, out: &mut T) -> Exact<N, ()>;
 }
 
 /// Runs the model compensated; if that cannot decide because of the range, in
@@ -328,6 +330,8 @@ fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     let double_double = match why {
         Unsettled::Range => settled(model.run::<Bounded>(out)),
         Unsettled::Close => None,
+        // Only the last stage holds a square root exactly.
+        Unsettled::Root => return (decided(model.run::<Surd>(out)), Stage::Rational),
     };
     let tracked = || match model.run::<Bounded<true>>(out) {
         Ok(()) => Some(Ok(())),
@@ -337,7 +341,7 @@ fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     if let Some(answer) = double_double.or_else(tracked) {
         return (answer, Stage::DoubleDouble);
     }
-    (decided(model.run::<Fraction>(out)), Stage::Rational)
+    (decided(model.run::<Surd>(out)), Stage::Rational)
 }
 
 /// The rational pass's result: an answer or the model's refusal.

@@ -2,7 +2,7 @@
 //! one tangential law (the normal, oblique and tangential endpoints).
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
-use crate::arith::Field;
+use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
@@ -320,7 +320,7 @@ struct Rigid<'a> {
 
 impl Model<PlanarOutcome> for Rigid<'_> {
     #[inline(always)]
-    fn run<N: Field>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
         model::rigid::<N>(self.scene, &self.law, self.outputs, out)
     }
 }
@@ -332,7 +332,7 @@ struct Point {
 
 impl Model<PlanarOutcome> for Point {
     #[inline(always)]
-    fn run<N: Field>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
         model::point_mass::<N>(&self.mass, self.outputs, out)
     }
 }
@@ -464,7 +464,36 @@ impl Case for PlanarImpact {
             | Output::VelocityChangeBX
             | Output::VelocityChangeBY
             | Output::DeltaVB
-            | Output::AngularVelocityChangeB => f64::NAN,
+            | Output::AngularVelocityChangeB
+            | Output::FinalVelocityAZ
+            | Output::FinalAngularVelocityAX
+            | Output::FinalAngularVelocityAY
+            | Output::FinalAngularVelocityAZ
+            | Output::VelocityChangeAZ
+            | Output::AngularVelocityChangeAX
+            | Output::AngularVelocityChangeAY
+            | Output::AngularVelocityChangeAZ
+            | Output::FinalVelocityBZ
+            | Output::FinalAngularVelocityBX
+            | Output::FinalAngularVelocityBY
+            | Output::FinalAngularVelocityBZ
+            | Output::VelocityChangeBZ
+            | Output::AngularVelocityChangeBX
+            | Output::AngularVelocityChangeBY
+            | Output::AngularVelocityChangeBZ
+            | Output::InitialTangentialContactVelocityX
+            | Output::InitialTangentialContactVelocityY
+            | Output::InitialTangentialContactVelocityZ
+            | Output::InitialContactSpin
+            | Output::FinalTangentialContactVelocityX
+            | Output::FinalTangentialContactVelocityY
+            | Output::FinalTangentialContactVelocityZ
+            | Output::FinalContactSpin
+            | Output::TangentialImpulseX
+            | Output::TangentialImpulseY
+            | Output::TangentialImpulseZ
+            | Output::ImpulseZ
+            | Output::TorsionalRegime => f64::NAN,
         })
     }
 

@@ -1,7 +1,7 @@
 //! The torsional case (section 4): spin about the contact normal.
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
-use crate::arith::Field;
+use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::torsional::{Torsion, torsional};
@@ -71,7 +71,7 @@ struct TorsionModel {
 
 impl Model<TorsionalOutcome> for TorsionModel {
     #[inline(always)]
-    fn run<N: Field>(&self, out: &mut TorsionalOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut TorsionalOutcome) -> Exact<N, ()> {
         torsional::<N>(&self.torsion, self.energy, out)
     }
 }
@@ -132,6 +132,31 @@ impl Case for TorsionalImpact {
             | Input::VelocityAX
             | Input::VelocityAY
             | Input::AngularVelocityA
+            | Input::InertiaAXX
+            | Input::InertiaAYY
+            | Input::InertiaAZZ
+            | Input::InertiaAXY
+            | Input::InertiaAXZ
+            | Input::InertiaAYZ
+            | Input::PositionAZ
+            | Input::VelocityAZ
+            | Input::AngularVelocityAX
+            | Input::AngularVelocityAY
+            | Input::AngularVelocityAZ
+            | Input::InertiaBXX
+            | Input::InertiaBYY
+            | Input::InertiaBZZ
+            | Input::InertiaBXY
+            | Input::InertiaBXZ
+            | Input::InertiaBYZ
+            | Input::PositionBZ
+            | Input::VelocityBZ
+            | Input::AngularVelocityBX
+            | Input::AngularVelocityBY
+            | Input::AngularVelocityBZ
+            | Input::ContactZ
+            | Input::NormalZ
+            | Input::Torsion
             | Input::MassB
             | Input::InertiaB
             | Input::PositionBX
@@ -192,7 +217,36 @@ impl Case for TorsionalImpact {
             | Output::VelocityChangeBX
             | Output::VelocityChangeBY
             | Output::DeltaVB
-            | Output::AngularVelocityChangeB => f64::NAN,
+            | Output::AngularVelocityChangeB
+            | Output::FinalVelocityAZ
+            | Output::FinalAngularVelocityAX
+            | Output::FinalAngularVelocityAY
+            | Output::FinalAngularVelocityAZ
+            | Output::VelocityChangeAZ
+            | Output::AngularVelocityChangeAX
+            | Output::AngularVelocityChangeAY
+            | Output::AngularVelocityChangeAZ
+            | Output::FinalVelocityBZ
+            | Output::FinalAngularVelocityBX
+            | Output::FinalAngularVelocityBY
+            | Output::FinalAngularVelocityBZ
+            | Output::VelocityChangeBZ
+            | Output::AngularVelocityChangeBX
+            | Output::AngularVelocityChangeBY
+            | Output::AngularVelocityChangeBZ
+            | Output::InitialTangentialContactVelocityX
+            | Output::InitialTangentialContactVelocityY
+            | Output::InitialTangentialContactVelocityZ
+            | Output::InitialContactSpin
+            | Output::FinalTangentialContactVelocityX
+            | Output::FinalTangentialContactVelocityY
+            | Output::FinalTangentialContactVelocityZ
+            | Output::FinalContactSpin
+            | Output::TangentialImpulseX
+            | Output::TangentialImpulseY
+            | Output::TangentialImpulseZ
+            | Output::ImpulseZ
+            | Output::TorsionalRegime => f64::NAN,
         })
     }
 
