@@ -863,3 +863,99 @@ async fn the_planar_examples_answer_what_the_examples_readme_says() {
     assert_eq!(response.status(), StatusCode::OK);
     assert_eq!(response.text().await.unwrap().lines().count(), 16);
 }
+
+/// `POST /v1/impacts/spatial` over HTTP: the examples answer with momentum
+/// conserved, hostile tensors and normals are refused at their pointers, and
+/// a spatial sweep streams.
+#[tokio::test]
+async fn the_spatial_contact_endpoint_answers_the_examples_and_refuses_at_the_pointer() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let read = common::examples::example;
+    let (status, _, topspin) = app
+        .post("/v1/impacts/spatial", &read("spatial_tennis_topspin.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{topspin}");
+    // Topspin slows the contact point's forward slip: the ball keeps more of
+    // its forward speed than a flat one.
+    let mut flat = read("spatial_tennis_topspin.json");
+    flat["bodies"][0]["angular_velocity"]["y"] = json!(0.0);
+    let (_, _, flat) = app.post("/v1/impacts/spatial", &flat).await;
+    let forward = |o: &Value| o["bodies"][0]["velocity"]["x"].as_f64().unwrap();
+    assert!(forward(&topspin) > forward(&flat), "{topspin} {flat}");
+    assert_eq!(topspin["bodies"][0]["velocity"]["z"], 7.5);
+    assert!(topspin.get("torsional_regime").is_none());
+    let (status, _, sidespin) = app
+        .post("/v1/impacts/spatial", &read("spatial_tennis_sidespin.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{sidespin}");
+    // Spin about x slips the contact point along y: the ball kicks sideways.
+    assert!(sidespin["bodies"][0]["velocity"]["y"].as_f64().unwrap() != 0.0);
+    assert!(sidespin["torsional_regime"].is_string(), "{sidespin}");
+    assert_eq!(sidespin["precision"], "exact");
+    let (status, _, dem) = app
+        .post("/v1/impacts/spatial", &read("spatial_dem_spheres.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{dem}");
+    for axis in ["x", "y", "z"] {
+        let dp = dem["bodies"][0]["velocity_change"][axis].as_f64().unwrap()
+            + dem["bodies"][1]["velocity_change"][axis].as_f64().unwrap();
+        assert!(dp.abs() < 1e-12, "equal masses: ΔV_A = −ΔV_B along {axis}: {dem}");
+    }
+    let (status, _, tool) = app
+        .post("/v1/impacts/spatial", &read("spatial_robot_tool.json"))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{tool}");
+    assert!(tool["energy"]["loss"].as_f64().unwrap() >= 0.0);
+
+    let mut hostile = read("spatial_tennis_topspin.json");
+    hostile["bodies"][0]["inertia"] =
+        json!({"xx": 1.0, "yy": 1.0, "zz": 1.0, "xy": 2.0, "xz": 0.0, "yz": 0.0});
+    let (status, _, problem) = app.post("/v1/impacts/spatial", &hostile).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/bodies/0/inertia", "{problem}");
+    hostile["bodies"][0]["inertia"] =
+        json!({"xx": "NaN", "yy": 1.0, "zz": 1.0, "xy": 0.0, "xz": 0.0, "yz": 0.0});
+    let (status, _, problem) = app.post("/v1/impacts/spatial", &hostile).await;
+    assert!(status.is_client_error(), "{problem}");
+    let mut zero = read("spatial_tennis_topspin.json");
+    zero["contact"]["normal"] = json!({"x": 0.0, "y": 0.0, "z": 0.0});
+    let (status, _, problem) = app.post("/v1/impacts/spatial", &zero).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(problem["pointer"], "/contact/normal", "{problem}");
+    let huge = r#"{"bodies": [{"mass": 1, "inertia": {"xx": 1e400, "yy": 1, "zz": 1, "xy": 0, "xz": 0, "yz": 0},
+        "position": {"x": 0, "y": 0, "z": 1}, "velocity": {"x": 0, "y": 0, "z": -1},
+        "angular_velocity": {"x": 0, "y": 0, "z": 0}}],
+        "contact": {"point": {"x": 0, "y": 0, "z": 0}, "normal": {"x": 0, "y": 0, "z": 1}}, "restitution": 0.5}"#;
+    let response = app
+        .client
+        .post(format!("{}/v1/impacts/spatial", app.base))
+        .header("content-type", "application/json")
+        .body(huge)
+        .send()
+        .await
+        .unwrap();
+    assert!(response.status().is_client_error());
+
+    let sweep = json!({
+        "case": "spatial",
+        "base": read("spatial_tennis_topspin.json"),
+        "axes": [{"path": "/bodies/0/angular_velocity/y", "linspace": {"start": -300.0, "stop": 300.0, "count": 7}}],
+        "outputs": ["/bodies/0/velocity", "/regime", "/impulse/tangential/x"]
+    });
+    let response = app
+        .client
+        .post(format!("{}/v1/sweeps", app.base))
+        .header("accept", "text/csv")
+        .json(&sweep)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::OK);
+    let text = response.text().await.unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 8, "{text}");
+    assert!(
+        lines[0].contains("/bodies/0/velocity/z") && lines[0].contains("/regime"),
+        "{text}"
+    );
+}

@@ -288,6 +288,29 @@ impl<const TRACK: bool> Bounded<TRACK> {
         self.hi.is_finite() && self.lo.is_finite() && self.err.is_finite()
     }
 
+    /// The square root of a value bounded away from zero: one Newton step
+    /// from `s = √hi` with the residual `hi − s²` formed exactly by a fused
+    /// multiply-add, `√c ≈ s + (hi − s² + lo) / (2 s)` (error below `2u² √c`
+    /// for the double-word `c = hi + lo`, bounded here by `8u²`), and the
+    /// input's bound carried as `|√x − √c| ≤ err / (√(c − err) + √c)`.
+    /// A value whose interval reaches zero (or leaves the normal range) is
+    /// [`Self::UNKNOWN`]: only the exact stage takes its root.
+    pub(crate) fn sqrt(&self) -> Self {
+        let low = (self.hi - self.lo.abs()) * (1.0 - 4.0 * U) - self.err;
+        if !(self.is_finite() && low >= f64::MIN_POSITIVE * (1u64 << 54) as f64 && self.hi < f64::MAX / 4.0) {
+            if self.is_exact_zero() {
+                return Bounded::exact(0.0);
+            }
+            return Self::UNKNOWN;
+        }
+        let s = self.hi.sqrt();
+        let residual = (-s).mul_add(s, self.hi) + self.lo;
+        let (hi, lo) = fast_two_sum(s, residual / (2.0 * s));
+        let carried = self.err / (low.sqrt() + s * (1.0 - 4.0 * U));
+        let err = (carried + 8.0 * U2 * hi) * GROW + TINY;
+        Bounded { hi, lo, err }
+    }
+
     /// The exact value's sign, or `None` when the bound cannot decide it.
     #[inline]
     pub(crate) fn sign(&self) -> Option<Ordering> {
@@ -442,6 +465,28 @@ mod tests {
             by_algorithm > 5_000 && by_residual > 250,
             "{by_algorithm} {by_residual}"
         );
+    }
+
+    #[test]
+    fn square_roots_lie_within_their_bounds() {
+        for x in [2.0, 3.0, 0.1, 1e-250, 7e250, 1.0 + f64::EPSILON, 12345.678] {
+            let third = Bounded::exact(x).div(&Bounded::exact(3.0));
+            let r = third.sqrt();
+            // (r ± err)² must bracket x/3.
+            let exact = rational(&Bounded::exact(x)) / num_rational::BigRational::from_integer(3.into());
+            let lo = rational(&Bounded::exact(r.hi)) + rational(&Bounded::exact(r.lo))
+                - rational(&Bounded::exact(r.err));
+            let hi = rational(&Bounded::exact(r.hi))
+                + rational(&Bounded::exact(r.lo))
+                + rational(&Bounded::exact(r.err));
+            assert!(&lo * &lo <= exact && exact <= &hi * &hi, "{x}");
+            assert!(r.err <= 1e-29 * r.hi.abs(), "{x}: {r:?}");
+        }
+        assert_eq!(Bounded::exact(0.0).sqrt().sign(), Some(Ordering::Equal));
+        // Below the range where the residual is exact: left to the exact stage.
+        assert_eq!(Bounded::exact(1e-300).sqrt().sign(), None);
+        let third = Bounded::exact(1.0).div(&Bounded::exact(3.0));
+        assert_eq!(third.sub(&third).sqrt().sign(), None);
     }
 
     #[test]

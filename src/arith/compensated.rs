@@ -113,7 +113,8 @@ pub(crate) enum Unsettled {
     /// The value lies too close to zero or to a rounding midpoint for the
     /// bound: possibly exactly there, which only exact tracking decides.
     Close,
-    /// The model takes a square root, which only the last stage ([`super::Surd`]) holds exactly.
+    /// The model takes a square root, which the static bound does not cover
+    /// (double-double, with its tracked bound, does).
     Root,
 }
 

@@ -305,6 +305,23 @@ impl Fraction {
         (&self.num, &self.den)
     }
 
+    /// The fraction in lowest terms once its parts pass `bits` bits together
+    /// (the last stage's values would otherwise grow with every quotient).
+    pub(super) fn reduced(self, bits: u64) -> Self {
+        if self.num.bits() + self.den.bits() <= bits {
+            return self;
+        }
+        let g = num_integer::Integer::gcd(&self.num, &self.den);
+        if g.is_one() {
+            self
+        } else {
+            Fraction {
+                num: &self.num / &g,
+                den: &self.den / &g,
+            }
+        }
+    }
+
     /// `log₂ |x|` within one (`x ≠ 0`): the difference of the bit lengths.
     pub(super) fn log2_estimate(&self) -> i64 {
         self.num.bits() as i64 - self.den.bits() as i64

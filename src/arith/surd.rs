@@ -28,6 +28,11 @@ use num_traits::{One, Signed, Zero};
 
 use super::field::{Field, Fraction};
 
+/// Parts are brought to lowest terms past this many bits: without it the
+/// numerators and denominators of a spatial answer (a tensor's inverse, the
+/// contact matrix's adjugate, conjugates) multiply into millions of bits.
+const REDUCE_ABOVE: u64 = 4096;
+
 /// The irrational part `b √g` of a [`Surd`] (`b ≠ 0`).
 #[derive(Debug, Clone, PartialEq)]
 struct Root {
@@ -45,13 +50,22 @@ pub(crate) struct Surd {
 
 impl Surd {
     fn rational(a: Fraction) -> Self {
-        Surd { a, root: None }
+        Surd {
+            a: a.reduced(REDUCE_ABOVE),
+            root: None,
+        }
     }
 
     /// `a + b √g`, with the root dropped when `b = 0`.
     fn with(a: Fraction, b: Fraction, g: &Rc<BigInt>) -> Self {
-        let root = (b.sign() != Ok(Ordering::Equal)).then(|| Root { b, g: Rc::clone(g) });
-        Surd { a, root }
+        let root = (b.sign() != Ok(Ordering::Equal)).then(|| Root {
+            b: b.reduced(REDUCE_ABOVE),
+            g: Rc::clone(g),
+        });
+        Surd {
+            a: a.reduced(REDUCE_ABOVE),
+            root,
+        }
     }
 
     /// The conjugate `a − b √g`.
@@ -231,9 +245,10 @@ impl Field for Surd {
 /// A [`Field`] that can take the square root of a value the model formed
 /// without one (`|n|`, `|u_t|`): the spatial laws' sliding direction.
 pub(crate) trait Radical: Field {
-    /// `√x` of a non-negative `x`: approximately in f64; exactly (as a
-    /// [`Surd`]) in the last stage; undecided in the bounded stages, which
-    /// then give way to it.
+    /// `√x` of a non-negative `x`: approximately in f64; with a rigorous
+    /// bound in double-double; exactly (as a [`Surd`]) in the last stage.
+    /// The compensated stage's static bound does not cover roots: it gives
+    /// way to double-double.
     fn sqrt(&self) -> Result<Self, Self::Undecided>;
 }
 
@@ -251,8 +266,14 @@ impl Radical for super::Compensated {
 }
 
 impl<const TRACK: bool> Radical for super::Bounded<TRACK> {
+    /// The double-double root with its bound (undecided when the value's
+    /// interval reaches zero: then its sign, hence its root, is not known).
     fn sqrt(&self) -> Result<Self, super::Undecided> {
-        Err(super::Undecided)
+        let root = super::Bounded::sqrt(self);
+        match root.sign() {
+            Some(_) => Ok(root),
+            None => Err(super::Undecided),
+        }
     }
 }
 
@@ -359,7 +380,9 @@ mod tests {
             Ordering::Less
         );
         assert_eq!(
-            s.sub(&Surd::of(std::f64::consts::SQRT_2.next_down())).sign().unwrap(),
+            s.sub(&Surd::of(std::f64::consts::SQRT_2.next_down()))
+                .sign()
+                .unwrap(),
             Ordering::Greater
         );
     }

@@ -390,3 +390,12 @@ impl TorsionalResponse {
         }
     }
 }
+
+impl From<crate::outcome::TorsionalRegime> for TorsionalRegimeDto {
+    fn from(r: crate::outcome::TorsionalRegime) -> Self {
+        match r {
+            crate::outcome::TorsionalRegime::Restitution => TorsionalRegimeDto::Restitution,
+            crate::outcome::TorsionalRegime::Sliding => TorsionalRegimeDto::Sliding,
+        }
+    }
+}

@@ -27,6 +27,7 @@ pub fn router() -> OpenApiRouter {
         .routes(routes!(impacts_tangential))
         .routes(routes!(impacts_torsional))
         .routes(routes!(super::planar::impacts_planar))
+        .routes(routes!(super::spatial::impacts_spatial))
 }
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.

@@ -12,6 +12,7 @@ pub mod fits;
 pub mod impacts;
 pub mod planar;
 pub mod problem;
+pub mod spatial;
 pub mod sweeps;
 
 use std::sync::Arc;

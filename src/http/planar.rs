@@ -126,78 +126,105 @@ fn law_problem(pointer: &str, detail: &str) -> ApiError {
 }
 
 impl PlanarContactRequest {
-    /// The law the members name (conventions: the second of two tangential
-    /// members is refused; `tangential_restitution` needs `friction`;
-    /// `kinetic_restitution` replaces `restitution`).
     fn law(&self) -> Result<Law, ApiError> {
-        let tangential = match (self.friction, self.impulse_ratio, self.tangential_restitution) {
-            (Some(_), Some(_), _) => {
-                return Err(law_problem(
-                    "/impulse_ratio",
-                    "give friction or impulse_ratio, not both",
-                ));
-            }
-            (None, Some(_), Some(_)) => {
-                return Err(law_problem(
-                    "/tangential_restitution",
-                    "tangential_restitution goes with friction, not with impulse_ratio",
-                ));
-            }
-            (None, None, Some(_)) => {
-                return Err(law_problem(
-                    "/friction",
-                    "tangential_restitution needs friction, its cap",
-                ));
-            }
-            other => other,
-        };
-        if let Some(k) = self.kinetic_restitution {
-            if self.restitution.is_some() {
-                return Err(law_problem(
-                    "/restitution",
-                    "kinetic_restitution replaces restitution: give one",
-                ));
-            }
-            if tangential != (None, None, None) {
-                let pointer = if tangential.0.is_some() {
-                    "/friction"
-                } else {
-                    "/impulse_ratio"
-                };
-                return Err(law_problem(
-                    pointer,
-                    "kinetic_restitution carries its own impulse ratios: give no other tangential law",
-                ));
-            }
-            return Ok(Law::KineticRestitution {
-                value: k.value,
-                approach_impulse_ratio: k.approach_impulse_ratio,
-                rebound_impulse_ratio: k.rebound_impulse_ratio,
-            });
+        law_of(
+            self.restitution,
+            self.kinetic_restitution,
+            self.friction,
+            self.impulse_ratio,
+            self.tangential_restitution,
+        )
+    }
+}
+
+/// The law the members of a contact request name (conventions: the second of
+/// two tangential members is refused; `tangential_restitution` needs
+/// `friction`; `kinetic_restitution` replaces `restitution`).
+pub(super) fn law_of(
+    restitution: Option<f64>,
+    kinetic_restitution: Option<KineticRestitutionDto>,
+    friction: Option<f64>,
+    impulse_ratio: Option<f64>,
+    tangential_restitution: Option<f64>,
+) -> Result<Law, ApiError> {
+    let tangential = match (friction, impulse_ratio, tangential_restitution) {
+        (Some(_), Some(_), _) => {
+            return Err(law_problem(
+                "/impulse_ratio",
+                "give friction or impulse_ratio, not both",
+            ));
         }
-        let Some(restitution) = self.restitution else {
+        (None, Some(_), Some(_)) => {
+            return Err(law_problem(
+                "/tangential_restitution",
+                "tangential_restitution goes with friction, not with impulse_ratio",
+            ));
+        }
+        (None, None, Some(_)) => {
+            return Err(law_problem(
+                "/friction",
+                "tangential_restitution needs friction, its cap",
+            ));
+        }
+        other => other,
+    };
+    if let Some(k) = kinetic_restitution {
+        if restitution.is_some() {
             return Err(law_problem(
                 "/restitution",
-                "give restitution, or kinetic_restitution",
+                "kinetic_restitution replaces restitution: give one",
             ));
-        };
-        Ok(match tangential {
-            (Some(friction), None, Some(tangential_restitution)) => Law::TangentialRestitution {
-                restitution,
-                friction,
-                tangential_restitution,
-            },
-            (Some(friction), None, None) => Law::Friction {
-                restitution,
-                friction,
-            },
-            (None, Some(impulse_ratio), None) => Law::ImpulseRatio {
-                restitution,
-                impulse_ratio,
-            },
-            _ => Law::Frictionless { restitution },
-        })
+        }
+        if tangential != (None, None, None) {
+            let pointer = if tangential.0.is_some() {
+                "/friction"
+            } else {
+                "/impulse_ratio"
+            };
+            return Err(law_problem(
+                pointer,
+                "kinetic_restitution carries its own impulse ratios: give no other tangential law",
+            ));
+        }
+        return Ok(Law::KineticRestitution {
+            value: k.value,
+            approach_impulse_ratio: k.approach_impulse_ratio,
+            rebound_impulse_ratio: k.rebound_impulse_ratio,
+        });
     }
+    let Some(restitution) = restitution else {
+        return Err(law_problem(
+            "/restitution",
+            "give restitution, or kinetic_restitution",
+        ));
+    };
+    Ok(match tangential {
+        (Some(friction), None, Some(tangential_restitution)) => Law::TangentialRestitution {
+            restitution,
+            friction,
+            tangential_restitution,
+        },
+        (Some(friction), None, None) => Law::Friction {
+            restitution,
+            friction,
+        },
+        (None, Some(impulse_ratio), None) => Law::ImpulseRatio {
+            restitution,
+            impulse_ratio,
+        },
+        _ => Law::Frictionless { restitution },
+    })
+}
+
+/// The refusal of a body count other than 1 or 2.
+pub(super) fn body_count(count: usize) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "body-count",
+        "One or two bodies",
+        format!("a contact has body A and either body B or a barrier: give 1 or 2 bodies, not {count}"),
+    )
+    .at("/bodies")
 }
 
 impl TryFrom<&PlanarContactRequest> for BodiesImpact {
@@ -207,18 +234,7 @@ impl TryFrom<&PlanarContactRequest> for BodiesImpact {
         let (a, b) = match req.bodies[..] {
             [a] => (a, None),
             [a, b] => (a, Some(b)),
-            _ => {
-                return Err(ApiError::new(
-                    StatusCode::UNPROCESSABLE_ENTITY,
-                    "body-count",
-                    "One or two bodies",
-                    format!(
-                        "a contact has body A and either body B or a barrier: give 1 or 2 bodies, not {}",
-                        req.bodies.len()
-                    ),
-                )
-                .at("/bodies"));
-            }
+            _ => return Err(body_count(req.bodies.len())),
         };
         Ok(BodiesImpact {
             a: a.into(),

@@ -330,8 +330,8 @@ fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     let double_double = match why {
         Unsettled::Range => settled(model.run::<Bounded>(out)),
         Unsettled::Close => None,
-        // Only the last stage holds a square root exactly.
-        Unsettled::Root => return (decided(model.run::<Surd>(out)), Stage::Rational),
+        // The static bound does not cover a root; double-double's tracked one does.
+        Unsettled::Root => settled(model.run::<Bounded>(out)),
     };
     let tracked = || match model.run::<Bounded<true>>(out) {
         Ok(()) => Some(Ok(())),

@@ -241,9 +241,14 @@ impl SpatialImpact {
         };
         if !approaching {
             let size = self.contact.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let along = if certain {
+                fast
+            } else {
+                approach::<Fraction>(self).approx()
+            };
             return Err(ImpactError::NotApproaching {
                 input: Input::VelocityA,
-                normal_contact_velocity: approach::<Fraction>(self).approx() / size + 0.0,
+                normal_contact_velocity: along / size + 0.0,
             });
         }
         Ok((law, certain))

@@ -35,7 +35,7 @@
 
 use std::cmp::Ordering;
 
-use super::{Exact, Fail, half, out, out_times_sqrt, sign};
+use super::{Exact, Fail, abs, half, out, out_times_sqrt, sign};
 use crate::arith::{Field, Radical};
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Law, RigidBody, SpatialImpact, Twist};
@@ -465,7 +465,7 @@ impl<'a, N: Radical> Scene<'a, N> {
                 }
             }
             Tangential::Sliding => {
-                let Some(d) = self.direction(z)? else {
+                let Some((d, along_normal)) = self.direction(z)? else {
                     return Ok(None);
                 };
                 let wd = sym_mul(&self.w_matrix, &d);
@@ -501,16 +501,22 @@ impl<'a, N: Radical> Scene<'a, N> {
                         (p_scale, kappa)
                     }
                 };
-                Ok(Some(self.solution(map(&d, |x| p_scale.mul(x)), kappa)))
+                let mut found = self.solution(map(&d, |x| p_scale.mul(x)), kappa);
+                if along_normal {
+                    // P ∥ n: no tangential part, exactly (not a cancellation
+                    // the bounded stages could not certify as zero).
+                    found.pt = [N::of(0.0), N::of(0.0), N::of(0.0)];
+                }
+                Ok(Some(found))
             }
         }
     }
 
-    /// The sliding impulse's direction `n + c √(ν/|w_s|²) w_s`; `None` when
-    /// the sticking system it needs is singular.
-    fn direction(&mut self, z: Spin) -> Exact<N, Option<V3<N>>> {
+    /// The sliding impulse's direction `n + c √(ν/|w_s|²) w_s`, and whether
+    /// it is `n` itself; `None` when the sticking system it needs is singular.
+    fn direction(&mut self, z: Spin) -> Exact<N, Option<(V3<N>, bool)>> {
         if self.law.c == 0.0 {
-            return Ok(Some(self.n.clone()));
+            return Ok(Some((self.n.clone(), true)));
         }
         let slip = norm2(&self.ut);
         let (ws, size) = if sign(&slip)? == Ordering::Greater {
@@ -526,13 +532,13 @@ impl<'a, N: Radical> Scene<'a, N> {
                         input: Input::ImpulseRatio,
                     }));
                 }
-                return Ok(Some(self.n.clone()));
+                return Ok(Some((self.n.clone(), true)));
             }
             (stick.pt, size)
         };
         let root = self.nu.div(&size).sqrt().map_err(Fail::Undecided)?;
         let scale = N::of(self.law.c).mul(&root);
-        Ok(Some(axpy(&scale, &ws, &self.n)))
+        Ok(Some((axpy(&scale, &ws, &self.n), false)))
     }
 
     /// Whether the kept tangential branch holds: `P·n ≠ 0`, `ν |P_t|² ≤ f² (P·n)²`.
@@ -619,13 +625,18 @@ impl<'a, N: Radical> Scene<'a, N> {
         }
     }
 
-    /// `|P_t|/P_n = √(ν |P_t|²) / P·n` of a solution (`None` when `P·n = 0`).
+    /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
+    /// (`None` when `P·n = 0`).
     fn ratio(&self, s: &Solution<N>, output: Output) -> Exact<N, Option<f64>> {
         if sign(&s.pn)? == Ordering::Equal {
             return Ok(None);
         }
         let size = self.nu.mul(&norm2(&s.pt));
-        Ok(Some(out_times_sqrt(output, &N::of(1.0).div(&s.pn), &size)?))
+        Ok(Some(out_times_sqrt(
+            output,
+            &N::of(1.0).div(&abs(&s.pn)?),
+            &size,
+        )?))
     }
 
     /// `x/|n|` correctly rounded.

@@ -34,7 +34,8 @@ use super::extract::{ApiJson, parse_value};
 use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest};
 use super::planar::PlanarContactRequest;
 use super::problem::{ApiError, Problem, Problems};
-use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, TorsionalImpact};
+use super::spatial::SpatialContactRequest;
+use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
 use crate::sweep::{CaseSweep, Sweep};
 
 /// The sweep endpoint, with its OpenAPI operation.
@@ -105,6 +106,11 @@ pub async fn sweeps(
         CaseDto::Planar => {
             let base: PlanarContactRequest = parse_value(base, "/base")?;
             let impact = BodiesImpact::try_from(&base).map_err(|e| e.under("/base"))?;
+            run(&request, impact, base.precision, limit, format, stall, &streams).await
+        }
+        CaseDto::Spatial => {
+            let base: SpatialContactRequest = parse_value(base, "/base")?;
+            let impact = SpatialImpact::try_from(&base).map_err(|e| e.under("/base"))?;
             run(&request, impact, base.precision, limit, format, stall, &streams).await
         }
     }

@@ -26,6 +26,8 @@ pub enum CaseDto {
     Torsional,
     /// `POST /v1/impacts/planar`.
     Planar,
+    /// `POST /v1/impacts/spatial`.
+    Spatial,
 }
 
 /// How axes combine into points.

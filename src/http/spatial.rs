@@ -1,0 +1,574 @@
+//! `POST /v1/impacts/spatial`: body A against body B or a barrier in space,
+//! with inertia tensors and an optional twist law.
+
+use axum::Json;
+use axum::http::StatusCode;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
+use super::extract::ApiJson;
+use super::planar::{body_count, law_of};
+use super::problem::{ApiError, Problems};
+use crate::impact::{Precision, RigidBody, SpatialContact, SpatialImpact, Twist, solve};
+use crate::outcome::{Outputs, SpatialBodyOutcome, SpatialContactVelocity, SpatialOutcome};
+
+/// A vector in world axes.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Vector3Dto {
+    /// x component.
+    pub x: f64,
+    /// y component.
+    pub y: f64,
+    /// z component.
+    pub z: f64,
+}
+
+impl From<Vector3Dto> for [f64; 3] {
+    fn from(v: Vector3Dto) -> Self {
+        [v.x, v.y, v.z]
+    }
+}
+
+impl From<[f64; 3]> for Vector3Dto {
+    fn from(v: [f64; 3]) -> Self {
+        Vector3Dto {
+            x: v[0],
+            y: v[1],
+            z: v[2],
+        }
+    }
+}
+
+/// The inertia tensor about the mass centre, in world axes: its own matrix
+/// entries (`xy = −∫ x y dm`); symmetric positive definite.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TensorDto {
+    /// I_xx = ∫(y² + z²) dm.
+    pub xx: f64,
+    /// I_yy.
+    pub yy: f64,
+    /// I_zz.
+    pub zz: f64,
+    /// I_xy = −∫ x y dm.
+    pub xy: f64,
+    /// I_xz.
+    pub xz: f64,
+    /// I_yz.
+    pub yz: f64,
+}
+
+/// A uniform sphere about its centre: `I = (2/5) m r²` solid, `(2/3) m r²` hollow.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SphereDto {
+    /// r > 0.
+    #[schema(exclusive_minimum = 0.0, example = 0.033)]
+    pub radius: f64,
+    /// A thin shell (tennis ball, basketball) rather than a solid ball.
+    #[serde(default)]
+    pub hollow: bool,
+}
+
+/// A rotation as a quaternion `w + x i + y j + z k` (normalised by the server).
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct QuaternionDto {
+    /// Scalar part.
+    pub w: f64,
+    /// i part.
+    pub x: f64,
+    /// j part.
+    pub y: f64,
+    /// k part.
+    pub z: f64,
+}
+
+/// Principal moments in the body's axes, turned into world axes by `rotation`
+/// (identity when absent): the tensor is `R diag(moments) Rᵀ` in f64.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PrincipalDto {
+    /// The principal moments about the body's x, y, z axes (> 0).
+    pub moments: Vector3Dto,
+    /// The body's orientation.
+    pub rotation: Option<QuaternionDto>,
+}
+
+/// An inertia tensor: the canonical six entries, a sphere, or principal moments.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(untagged)]
+pub enum InertiaDto {
+    /// The tensor's own entries (the canonical form).
+    Tensor(TensorDto),
+    /// `{"sphere": {"radius", "hollow"}}`.
+    Sphere {
+        /// The sphere.
+        sphere: SphereDto,
+    },
+    /// `{"principal": {"moments", "rotation"}}`.
+    Principal {
+        /// The moments and the rotation.
+        principal: PrincipalDto,
+    },
+}
+
+/// A rigid body in space.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RigidBodyDto {
+    /// m: mass (> 0).
+    #[schema(exclusive_minimum = 0.0, example = 0.057)]
+    pub mass: f64,
+    /// The inertia tensor about the mass centre.
+    pub inertia: InertiaDto,
+    /// Position of the mass centre G.
+    pub position: Vector3Dto,
+    /// Velocity of G.
+    pub velocity: Vector3Dto,
+    /// ω: angular velocity.
+    pub angular_velocity: Vector3Dto,
+}
+
+fn invalid(pointer: String, detail: String) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "out-of-range",
+        "Input out of range",
+        detail,
+    )
+    .at(&pointer)
+}
+
+impl InertiaDto {
+    /// The canonical entries `[xx, yy, zz, xy, xz, yz]` (the conveniences
+    /// evaluated in f64), for body `k` of mass `mass`.
+    fn tensor(&self, k: usize, mass: f64) -> Result<[f64; 6], ApiError> {
+        Ok(match *self {
+            InertiaDto::Tensor(t) => [t.xx, t.yy, t.zz, t.xy, t.xz, t.yz],
+            InertiaDto::Sphere { sphere } => {
+                if !(sphere.radius.is_finite() && sphere.radius > 0.0) {
+                    return Err(invalid(
+                        format!("/bodies/{k}/inertia/sphere/radius"),
+                        format!(
+                            "a sphere's radius must be a finite number above 0, got {}",
+                            sphere.radius
+                        ),
+                    ));
+                }
+                let moment =
+                    if sphere.hollow { 2.0 / 3.0 } else { 0.4 } * mass * sphere.radius * sphere.radius;
+                [moment, moment, moment, 0.0, 0.0, 0.0]
+            }
+            InertiaDto::Principal { principal } => {
+                let moments: [f64; 3] = principal.moments.into();
+                for (axis, m) in ["x", "y", "z"].into_iter().zip(moments) {
+                    if !(m.is_finite() && m > 0.0) {
+                        return Err(invalid(
+                            format!("/bodies/{k}/inertia/principal/moments/{axis}"),
+                            format!("a principal moment must be a finite number above 0, got {m}"),
+                        ));
+                    }
+                }
+                let r = match principal.rotation {
+                    None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                    Some(q) => {
+                        let size = (q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z).sqrt();
+                        if !(size.is_finite() && size > 0.0) {
+                            return Err(invalid(
+                                format!("/bodies/{k}/inertia/principal/rotation"),
+                                "the rotation must be a finite, non-zero quaternion".to_owned(),
+                            ));
+                        }
+                        let [w, x, y, z] = [q.w, q.x, q.y, q.z].map(|c| c / size);
+                        [
+                            [
+                                1.0 - 2.0 * (y * y + z * z),
+                                2.0 * (x * y - w * z),
+                                2.0 * (x * z + w * y),
+                            ],
+                            [
+                                2.0 * (x * y + w * z),
+                                1.0 - 2.0 * (x * x + z * z),
+                                2.0 * (y * z - w * x),
+                            ],
+                            [
+                                2.0 * (x * z - w * y),
+                                2.0 * (y * z + w * x),
+                                1.0 - 2.0 * (x * x + y * y),
+                            ],
+                        ]
+                    }
+                };
+                let entry = |i: usize, j: usize| (0..3).map(|c| r[i][c] * moments[c] * r[j][c]).sum::<f64>();
+                [
+                    entry(0, 0),
+                    entry(1, 1),
+                    entry(2, 2),
+                    entry(0, 1),
+                    entry(0, 2),
+                    entry(1, 2),
+                ]
+            }
+        })
+    }
+}
+
+impl RigidBodyDto {
+    fn body(&self, k: usize) -> Result<RigidBody, ApiError> {
+        Ok(RigidBody {
+            mass: self.mass,
+            inertia: self.inertia.tensor(k, self.mass)?,
+            position: self.position.into(),
+            velocity: self.velocity.into(),
+            angular_velocity: self.angular_velocity.into(),
+        })
+    }
+}
+
+/// The contact point and the normal from body B (or the barrier) into body A.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialContactDto {
+    /// C: the contact point.
+    pub point: Vector3Dto,
+    /// n: the normal from B into A, any non-zero length (the model uses n/|n|).
+    pub normal: Vector3Dto,
+}
+
+/// The twist law about the normal (section 4 generalised).
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TorsionDto {
+    /// e_z: torsional coefficient of restitution, in [0, 1].
+    #[schema(minimum = 0.0, maximum = 1.0, example = 0.3)]
+    pub restitution: f64,
+    /// μ_z: torsional friction coefficient (≥ 0).
+    #[schema(minimum = 0.0, example = 0.2)]
+    pub friction: f64,
+    /// ρ_p: pitch radius of the torsional friction (> 0).
+    #[schema(exclusive_minimum = 0.0, example = 0.01)]
+    pub pitch_radius: f64,
+}
+
+/// One point contact in space between two bodies, or one and a fixed barrier:
+/// `restitution` and at most one tangential law (`friction`; `impulse_ratio`,
+/// a magnitude opposing the slip; `tangential_restitution` with `friction`),
+/// none being frictionless; `torsion` adds the twist law.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "bodies": [
+        {"mass": 0.057, "inertia": {"sphere": {"radius": 0.033, "hollow": true}},
+         "position": {"x": 0.0, "y": 0.0, "z": 0.033},
+         "velocity": {"x": 20.0, "y": 0.0, "z": -10.0},
+         "angular_velocity": {"x": 0.0, "y": 300.0, "z": 0.0}}
+    ],
+    "contact": {"point": {"x": 0.0, "y": 0.0, "z": 0.0}, "normal": {"x": 0.0, "y": 0.0, "z": 1.0}},
+    "restitution": 0.75,
+    "friction": 0.6
+}))]
+pub struct SpatialContactRequest {
+    /// Body A, and body B unless A hits a fixed barrier (1 or 2 bodies).
+    pub bodies: Vec<RigidBodyDto>,
+    /// The contact.
+    pub contact: SpatialContactDto,
+    /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
+    #[schema(minimum = 0.0, maximum = 1.0, example = 0.75)]
+    pub restitution: Option<f64>,
+    /// f: Coulomb friction coefficient (≥ 0).
+    #[schema(minimum = 0.0, example = 0.6)]
+    pub friction: Option<f64>,
+    /// μ ≥ 0: a prescribed impulse ratio |P_t| / P_n, the tangential impulse opposing the slip.
+    #[schema(minimum = 0.0)]
+    pub impulse_ratio: Option<f64>,
+    /// e_t: tangential coefficient of restitution in [−1, 1], capped by `friction`.
+    #[schema(minimum = -1.0, maximum = 1.0)]
+    pub tangential_restitution: Option<f64>,
+    /// The twist law about the normal, if any.
+    pub torsion: Option<TorsionDto>,
+    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    #[serde(default)]
+    pub precision: PrecisionDto,
+}
+
+impl TryFrom<&SpatialContactRequest> for SpatialImpact {
+    type Error = ApiError;
+
+    fn try_from(req: &SpatialContactRequest) -> Result<Self, ApiError> {
+        let (a, b) = match &req.bodies[..] {
+            [a] => (a.body(0)?, None),
+            [a, b] => (a.body(0)?, Some(b.body(1)?)),
+            _ => return Err(body_count(req.bodies.len())),
+        };
+        Ok(SpatialImpact {
+            a,
+            b,
+            contact: SpatialContact {
+                point: req.contact.point.into(),
+                normal: req.contact.normal.into(),
+            },
+            law: law_of(
+                req.restitution,
+                None,
+                req.friction,
+                req.impulse_ratio,
+                req.tangential_restitution,
+            )?,
+            torsion: req.torsion.map(|t| Twist {
+                restitution: t.restitution,
+                friction: t.friction,
+                pitch_radius: t.pitch_radius,
+            }),
+        })
+    }
+}
+
+/// What one body answers.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct SpatialBodyOut {
+    /// V: final velocity of the mass centre.
+    pub velocity: Vector3Dto,
+    /// Ω: final angular velocity.
+    pub angular_velocity: Vector3Dto,
+    /// ΔV = V − v.
+    pub velocity_change: Vector3Dto,
+    /// |ΔV|: the delta-V of accident reconstruction.
+    pub delta_v: f64,
+    /// ΔΩ = Ω − ω.
+    pub angular_velocity_change: Vector3Dto,
+}
+
+impl From<&SpatialBodyOutcome> for SpatialBodyOut {
+    fn from(b: &SpatialBodyOutcome) -> Self {
+        SpatialBodyOut {
+            velocity: b.velocity.into(),
+            angular_velocity: b.angular_velocity.into(),
+            velocity_change: b.velocity_change.into(),
+            delta_v: b.delta_v,
+            angular_velocity_change: b.angular_velocity_change.into(),
+        }
+    }
+}
+
+/// The relative contact velocity `u = u_A − u_B` at one instant.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct SpatialContactVelocityOut {
+    /// u·n̂ (negative before the impact).
+    pub normal: f64,
+    /// The slip u − (u·n̂) n̂, a world vector.
+    pub tangential: Vector3Dto,
+    /// The relative spin about the normal, (ω_A − ω_B)·n̂.
+    pub spin: f64,
+}
+
+impl From<SpatialContactVelocity> for SpatialContactVelocityOut {
+    fn from(c: SpatialContactVelocity) -> Self {
+        SpatialContactVelocityOut {
+            normal: c.normal,
+            tangential: c.tangential.into(),
+            spin: c.spin,
+        }
+    }
+}
+
+/// Initial and final relative contact velocities.
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct SpatialContactVelocitiesOut {
+    /// Before the impact.
+    pub initial: SpatialContactVelocityOut,
+    /// After it.
+    #[serde(rename = "final")]
+    pub final_: SpatialContactVelocityOut,
+}
+
+/// The impulse and couple on body A (−P, −M act on B).
+#[derive(Debug, Clone, Copy, Serialize, ToSchema)]
+pub struct SpatialImpulseOut {
+    /// P_n = P·n̂ > 0.
+    pub normal: f64,
+    /// P_t = P − P_n n̂, a world vector.
+    pub tangential: Vector3Dto,
+    /// M: the couple about n̂ (0 without a twist law).
+    pub torsional: f64,
+    /// World x of P.
+    pub x: f64,
+    /// World y of P.
+    pub y: f64,
+    /// World z of P: the principal direction of force is (x, y, z).
+    pub z: f64,
+}
+
+/// The outcome of a contact in space.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct SpatialContactResponse {
+    /// Body A, then body B if given.
+    pub bodies: Vec<SpatialBodyOut>,
+    /// Relative contact velocities before and after.
+    pub contact_velocity: SpatialContactVelocitiesOut,
+    /// The impulse and couple on A.
+    pub impulse: SpatialImpulseOut,
+    /// μ = |P_t| / P_n.
+    pub impulse_ratio: f64,
+    /// μ_c = |P_t| / P_n of the sticking impulse (with the answer's twist
+    /// branch); null when that impulse has P_n = 0 or its system is singular.
+    pub critical_impulse_ratio: Option<f64>,
+    /// e.
+    pub restitution: f64,
+    /// The branch of the tangential law that answered.
+    pub regime: RegimeDto,
+    /// The branch of the twist law (with `torsion` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub torsional_regime: Option<TorsionalRegimeDto>,
+    /// Kinetic energies of the pair: T_L in work form (with the couple's work),
+    /// T_M = ½ (u, s)ᵀ𝒲⁻¹(u, s), T_L* = T_L/T_M.
+    pub energy: PlanarEnergyOut,
+    /// The precision that produced the answer.
+    pub precision: PrecisionDto,
+}
+
+impl SpatialContactResponse {
+    /// Maps an outcome computed with every output in `precision`.
+    pub fn from_outcome(o: &SpatialOutcome, precision: Precision) -> Self {
+        SpatialContactResponse {
+            bodies: o.bodies[..o.body_count].iter().map(Into::into).collect(),
+            contact_velocity: SpatialContactVelocitiesOut {
+                initial: o.contact_velocity.initial.into(),
+                final_: o.contact_velocity.r#final.into(),
+            },
+            impulse: SpatialImpulseOut {
+                normal: o.impulse.normal,
+                tangential: o.impulse.tangential.into(),
+                torsional: o.impulse.torsional,
+                x: o.impulse.x,
+                y: o.impulse.y,
+                z: o.impulse.z,
+            },
+            impulse_ratio: o.impulse_ratio,
+            critical_impulse_ratio: o.critical_impulse_ratio,
+            restitution: o.restitution,
+            regime: o.regime.into(),
+            torsional_regime: o.torsional_regime.map(Into::into),
+            energy: o.energy.unwrap_or_default().into(),
+            precision: precision.into(),
+        }
+    }
+}
+
+/// The response to a spatial contact request.
+pub fn respond_spatial_contact(req: SpatialContactRequest) -> Result<SpatialContactResponse, ApiError> {
+    let precision = Precision::from(req.precision);
+    let impact = SpatialImpact::try_from(&req)?;
+    let outcome = solve(&impact, Outputs::ALL, precision)?;
+    Ok(SpatialContactResponse::from_outcome(&outcome, precision))
+}
+
+/// Two rigid bodies, or one against a barrier, in space: inertia tensors, slip
+/// in any direction, the twist law about the normal.
+#[utoipa::path(
+    post,
+    path = "/v1/impacts/spatial",
+    tag = "impacts",
+    request_body(content = SpatialContactRequest, content_type = "application/json"),
+    responses((status = 200, description = "The contact's outcome", body = SpatialContactResponse), Problems)
+)]
+pub async fn impacts_spatial(
+    ApiJson(req): ApiJson<SpatialContactRequest>,
+) -> Result<Json<SpatialContactResponse>, ApiError> {
+    Ok(Json(respond_spatial_contact(req)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::{Value as Json, json};
+
+    use super::*;
+    use crate::impact::Case;
+    use crate::quantity::Value;
+
+    fn request(bodies: usize, law: Json) -> Json {
+        let body = |x: f64, vx: f64| {
+            json!({"mass": 1.5, "inertia": {"xx": 0.25, "yy": 0.5, "zz": 0.375, "xy": 0.0625, "xz": -0.03125, "yz": 0.125},
+                   "position": {"x": x, "y": 0.125, "z": -0.25},
+                   "velocity": {"x": vx, "y": 0.75, "z": 0.5}, "angular_velocity": {"x": 1.25, "y": -2.0, "z": 3.0}})
+        };
+        let all = [body(0.0, 8.0), body(2.0, -1.0)];
+        let mut r = json!({
+            "bodies": all[..bodies].to_vec(),
+            "contact": {"point": {"x": 1.0, "y": 0.5, "z": 0.25}, "normal": {"x": -2.0, "y": 0.5, "z": 0.25}},
+        });
+        r.as_object_mut()
+            .unwrap()
+            .extend(law.as_object().unwrap().clone());
+        r
+    }
+
+    #[test]
+    fn every_input_and_output_path_resolves_in_the_spatial_contact_wire_types() {
+        let torsion = json!({"restitution": 0.3, "friction": 0.2, "pitch_radius": 0.05});
+        for bodies in [1, 2] {
+            for law in [
+                json!({"restitution": 0.5}),
+                json!({"restitution": 0.5, "friction": 0.3}),
+                json!({"restitution": 0.5, "impulse_ratio": 0.05}),
+                json!({"restitution": 0.5, "friction": 0.3, "tangential_restitution": 0.2}),
+                json!({"restitution": 0.5, "friction": 0.3, "torsion": torsion}),
+            ] {
+                let r = request(bodies, law);
+                let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();
+                let impact = SpatialImpact::try_from(&req).unwrap();
+                for input in impact.reads() {
+                    let at = r
+                        .pointer(input.path())
+                        .unwrap_or_else(|| panic!("{} in {r}", input.path()));
+                    assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
+                }
+                for precision in [Precision::Fast, Precision::Exact] {
+                    let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
+                    let response =
+                        serde_json::to_value(SpatialContactResponse::from_outcome(&outcome, precision))
+                            .unwrap();
+                    for &output in SpatialImpact::OUTPUTS {
+                        let value = SpatialImpact::output(&outcome, output);
+                        match (response.pointer(output.path()), value) {
+                            (Some(at), Value::Number(x)) => {
+                                assert_eq!(at.as_f64(), Some(x), "{}", output.path())
+                            }
+                            (Some(at), Value::Text(name)) => assert_eq!(at.as_str(), Some(name)),
+                            (None, Value::Number(x)) => {
+                                assert!(x.is_nan() && !impact.answers(output), "{}", output.path())
+                            }
+                            (None, Value::Text(_)) => panic!("{}", output.path()),
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_inertia_conveniences_give_the_tensors_they_name() {
+        let mut r = request(1, json!({"restitution": 0.5}));
+        r["bodies"][0]["inertia"] = json!({"sphere": {"radius": 0.5, "hollow": true}});
+        let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();
+        let t = SpatialImpact::try_from(&req).unwrap().a.inertia;
+        // (2/3) m r² = (2/3) 1.5 · 0.25.
+        assert_eq!(t, [0.25, 0.25, 0.25, 0.0, 0.0, 0.0]);
+        r["bodies"][0]["inertia"] = json!({"principal": {"moments": {"x": 1.0, "y": 2.0, "z": 3.0},
+                                                           "rotation": {"w": 1.0, "x": 0.0, "y": 0.0, "z": 1.0}}});
+        let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();
+        let t = SpatialImpact::try_from(&req).unwrap().a.inertia;
+        // 90° about z swaps the x and y moments.
+        for (got, want) in t.iter().zip([2.0, 1.0, 3.0, 0.0, 0.0, 0.0]) {
+            assert!((got - want).abs() < 1e-15, "{t:?}");
+        }
+        r["bodies"][0]["inertia"] = json!({"sphere": {"radius": -1.0}});
+        let req: SpatialContactRequest = serde_json::from_value(r).unwrap();
+        assert_eq!(
+            SpatialImpact::try_from(&req).unwrap_err().pointer(),
+            Some("/bodies/0/inertia/sphere/radius")
+        );
+    }
+}
