@@ -569,7 +569,7 @@ fn answers_in_space_conserve_momentum_and_angular_momentum_and_never_create_ener
 
 #[test]
 fn a_rotated_scene_gives_the_rotated_answer() {
-    let mut rng = Rng::new(0x0207_a7e);
+    let mut rng = Rng::new(0x0020_7a7e);
     let mut checked = 0;
     for k in 0..1500 {
         let scene = random_scene(&mut rng, k % 2 == 0);
