@@ -14,7 +14,7 @@ use linear::{TangentialClosure, solve_momentum};
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, Precision,
-    solve,
+    RigidBody, SpatialContact, SpatialImpact, Twist, solve,
 };
 
 #[path = "../tests/common/linear.rs"]
@@ -99,5 +99,54 @@ fn general(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, methods, general);
+/// A spinning ball against a barrier and two rigid bodies in space with
+/// rotated tensors, under Coulomb friction (sliding), with and without twist.
+fn space(two: bool, torsion: bool) -> SpatialImpact {
+    let body = |x: f64, vz: f64, spin: [f64; 3]| RigidBody {
+        mass: 0.057,
+        inertia: [3.5e-5, 3.1e-5, 3.3e-5, 1e-6, -2e-6, 0.5e-6],
+        position: [x, 0.002, 0.033],
+        velocity: [20.0, 3.0, vz],
+        angular_velocity: spin,
+    };
+    SpatialImpact {
+        a: body(0.01, -10.0, [10.0, -300.0, 40.0]),
+        b: two.then(|| RigidBody {
+            position: [0.3, 0.1, -0.2],
+            ..body(0.3, 3.0, [0.0; 3])
+        }),
+        contact: SpatialContact {
+            point: [0.0; 3],
+            normal: [0.1, 0.2, 2.0],
+        },
+        law: Law::Friction {
+            restitution: 0.8,
+            friction: 0.6,
+        },
+        torsion: torsion.then_some(Twist {
+            restitution: 0.3,
+            friction: 0.2,
+            pitch_radius: 0.01,
+        }),
+    }
+}
+
+fn spatial(c: &mut Criterion) {
+    let mut group = c.benchmark_group("spatial_contact_all_outputs");
+    for (name, impact) in [
+        ("barrier", space(false, false)),
+        ("two_bodies", space(true, false)),
+        ("two_bodies_twist", space(true, true)),
+    ] {
+        group.bench_function(format!("{name}_fast"), |b| {
+            b.iter(|| solve(black_box(&impact), Outputs::ALL, Precision::Fast))
+        });
+        group.bench_function(format!("{name}_exact"), |b| {
+            b.iter(|| solve(black_box(&impact), Outputs::ALL, Precision::Exact))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, methods, general, spatial);
 criterion_main!(benches);
