@@ -3,6 +3,9 @@
 //! angular momentum about the contact point, energy and rotation invariants
 //! on random scenes; refusals of what the model cannot answer.
 
+// Component loops over x, y, z read several vectors at once.
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 
 use common::Rng;
