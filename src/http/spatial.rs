@@ -118,7 +118,7 @@ pub enum InertiaDto {
 /// A rigid body in space.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct RigidBodyDto {
+pub struct SpatialBodyDto {
     /// m: mass (> 0).
     #[schema(exclusive_minimum = 0.0, example = 0.057)]
     pub mass: f64,
@@ -216,7 +216,7 @@ impl InertiaDto {
     }
 }
 
-impl RigidBodyDto {
+impl SpatialBodyDto {
     fn body(&self, k: usize) -> Result<RigidBody, ApiError> {
         Ok(RigidBody {
             mass: self.mass,
@@ -241,7 +241,7 @@ pub struct SpatialContactDto {
 /// The twist law about the normal (section 4 generalised).
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct TorsionDto {
+pub struct TwistDto {
     /// e_z: torsional coefficient of restitution, in [0, 1].
     #[schema(minimum = 0.0, maximum = 1.0, example = 0.3)]
     pub restitution: f64,
@@ -272,7 +272,7 @@ pub struct TorsionDto {
 }))]
 pub struct SpatialContactRequest {
     /// Body A, and body B unless A hits a fixed barrier (1 or 2 bodies).
-    pub bodies: Vec<RigidBodyDto>,
+    pub bodies: Vec<SpatialBodyDto>,
     /// The contact.
     pub contact: SpatialContactDto,
     /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
@@ -288,7 +288,7 @@ pub struct SpatialContactRequest {
     #[schema(minimum = -1.0, maximum = 1.0)]
     pub tangential_restitution: Option<f64>,
     /// The twist law about the normal, if any.
-    pub torsion: Option<TorsionDto>,
+    pub torsion: Option<TwistDto>,
     /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
     #[serde(default)]
     pub precision: PrecisionDto,

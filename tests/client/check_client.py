@@ -13,6 +13,7 @@ from restitution_client.api.impacts import (
     impacts_normal,
     impacts_oblique,
     impacts_planar,
+    impacts_spatial,
     impacts_tangential,
     impacts_torsional,
 )
@@ -27,6 +28,8 @@ from restitution_client.models import (
     PlanarFitResponse,
     PlanarContactResponse,
     PlanarResponse,
+    SpatialContactRequest,
+    SpatialContactResponse,
     Problem,
     SweepRequest,
     TangentialFitRequest,
@@ -117,6 +120,22 @@ def main(base):
     check("planar", isinstance(out, PlanarContactResponse) and out.regime == "sticking"
           and close(1500.0 * out.bodies[0].velocity_change.x + 1200.0 * out.bodies[1].velocity_change.x, 0.0, 1e-9)
           and close(out.contact_velocity.final.normal, 3.0), repr(out))
+
+    # A tennis ball with topspin in space (canonical tensor form): V_z = −e v_z.
+    ball = {
+        "bodies": [{"mass": 0.057,
+                    "inertia": {"xx": 4.1e-5, "yy": 4.1e-5, "zz": 4.1e-5, "xy": 0.0, "xz": 0.0, "yz": 0.0},
+                    "position": {"x": 0.0, "y": 0.0, "z": 0.033},
+                    "velocity": {"x": 20.0, "y": 0.0, "z": -10.0},
+                    "angular_velocity": {"x": 0.0, "y": 300.0, "z": 0.0}}],
+        "contact": {"point": {"x": 0.0, "y": 0.0, "z": 0.0}, "normal": {"x": 0.0, "y": 0.0, "z": 1.0}},
+        "restitution": 0.75,
+        "friction": 0.6,
+        "torsion": {"restitution": 0.3, "friction": 0.2, "pitch_radius": 0.005},
+    }
+    out = impacts_spatial.sync(client=client, body=SpatialContactRequest.from_dict(ball))
+    check("spatial", isinstance(out, SpatialContactResponse) and close(out.bodies[0].velocity.z, 7.5)
+          and out.energy.loss >= 0.0, repr(out))
 
     # A planar sweep over body B's speed, delta-V of both cars as columns.
     sweep = SweepRequest.from_dict({
