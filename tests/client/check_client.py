@@ -133,9 +133,9 @@ def main(base):
         "friction": 0.6,
         "torsion": {"restitution": 0.3, "friction": 0.2, "pitch_radius": 0.005},
     }
-    out = impacts_spatial.sync(client=client, body=SpatialContactRequest.from_dict(ball))
-    check("spatial", isinstance(out, SpatialContactResponse) and close(out.bodies[0].velocity.z, 7.5)
-          and out.energy.loss >= 0.0, repr(out))
+    bounce = impacts_spatial.sync(client=client, body=SpatialContactRequest.from_dict(ball))
+    check("spatial", isinstance(bounce, SpatialContactResponse) and close(bounce.bodies[0].velocity.z, 7.5)
+          and bounce.energy.loss >= 0.0, repr(bounce))
 
     # A planar sweep over body B's speed, delta-V of both cars as columns.
     sweep = SweepRequest.from_dict({
