@@ -296,8 +296,9 @@ pub struct SpatialOutcome {
     pub impulse: SpatialImpulse,
     /// `|P_t| / P_n`.
     pub impulse_ratio: f64,
-    /// `|P_t| / P_n` of the sticking impulse, when asked for or sticking
-    /// (`None` also where that impulse has `P_n = 0`).
+    /// `|P_t| / |P_n|` of the sticking impulse (a magnitude, the quantity the
+    /// friction cap compares with `f`), when asked for or sticking (`None`
+    /// also where that impulse has `P_n = 0` or its system is singular).
     pub critical_impulse_ratio: Option<f64>,
     /// `e`.
     pub restitution: f64,

@@ -412,7 +412,7 @@ pub struct SpatialContactResponse {
     pub impulse: SpatialImpulseOut,
     /// μ = |P_t| / P_n.
     pub impulse_ratio: f64,
-    /// μ_c = |P_t| / P_n of the sticking impulse (with the answer's twist
+    /// μ_c = |P_t| / |P_n| of the sticking impulse (with the answer's twist
     /// branch); null when that impulse has P_n = 0 or its system is singular.
     pub critical_impulse_ratio: Option<f64>,
     /// e.

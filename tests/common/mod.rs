@@ -9,6 +9,7 @@ pub mod plain;
 pub mod reference;
 mod rng;
 pub mod server;
+pub mod spatial_reference;
 pub mod validation;
 
 pub use rng::Rng;
