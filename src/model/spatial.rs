@@ -151,18 +151,29 @@ impl<N: Field> Body<N> {
 
     /// The contact-point velocity `v + ω × r`.
     fn contact_velocity(&self) -> V3<N> {
-        zip(&self.v, &cross(&self.w, &self.r), |a, b| a.add(b))
+        point_velocity(&self.v, &self.w, &self.r)
     }
+}
+
+/// `v + ω × r`.
+#[inline(always)]
+fn point_velocity<N: Field>(v: &V3<N>, w: &V3<N>, r: &V3<N>) -> V3<N> {
+    zip(v, &cross(w, r), |a, b| a.add(b))
 }
 
 /// The relative normal contact velocity `u·n` (unnormalised), by the same
 /// operations as the scene: what validation decides the approach on.
 pub(crate) fn approach<N: Field>(impact: &SpatialImpact) -> N {
-    let c = vector(impact.contact.point);
+    let c: V3<N> = vector(impact.contact.point);
     let n = vector(impact.contact.normal);
-    let mut u = Body::<N>::new(&impact.a, &c).contact_velocity();
+    // Only the velocities: no tensor inverse, which the decision does not need.
+    let velocity = |b: &RigidBody| {
+        let r = zip(&c, &vector(b.position), |c, g| c.sub(g));
+        point_velocity(&vector(b.velocity), &vector(b.angular_velocity), &r)
+    };
+    let mut u = velocity(&impact.a);
     if let Some(b) = &impact.b {
-        u = zip(&u, &Body::<N>::new(b, &c).contact_velocity(), |x, y| x.sub(y));
+        u = zip(&u, &velocity(b), |x, y| x.sub(y));
     }
     dot(&u, &n)
 }
@@ -583,7 +594,8 @@ impl<'a, N: Radical> Scene<'a, N> {
         } else {
             &[Spin::Off]
         };
-        let mut valid = Vec::with_capacity(1);
+        // The count of valid combinations and the last one (no allocation per solve).
+        let (mut count, mut chosen) = (0, (Tangential::Sliding, Spin::Off));
         for &t in tangentials {
             for &z in spins {
                 let t_ok = match t {
@@ -612,17 +624,19 @@ impl<'a, N: Radical> Scene<'a, N> {
                     }
                 };
                 if z_ok {
-                    valid.push((t, z));
+                    count += 1;
+                    chosen = (t, z);
                 }
             }
         }
-        match valid[..] {
-            [(t, z)] => Ok((t, z, self.solve(t, z, et)?)),
-            _ => Err(Fail::Refused(ImpactError::NotUnique {
+        if count != 1 {
+            return Err(Fail::Refused(ImpactError::NotUnique {
                 input: Input::Torsion,
-                combinations: valid.len(),
-            })),
+                combinations: count,
+            }));
         }
+        let (t, z) = chosen;
+        Ok((t, z, self.solve(t, z, et)?))
     }
 
     /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
