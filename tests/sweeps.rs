@@ -644,3 +644,162 @@ async fn a_planar_sweep_takes_body_inputs_as_axes_and_body_outputs_as_columns() 
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(problem["pointer"], "/axes/0/path", "{problem}");
 }
+
+/// Ranges from the plan tile the sweep: their rows, concatenated, are the whole
+/// sweep's rows byte for byte, in every streamed format and in the JSON table.
+#[tokio::test]
+async fn planned_ranges_tile_the_whole_sweep_in_every_format() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let sweep = two_axis_sweep();
+    for (shards, each) in [(Some(4), None), (Some(200), None), (None, Some(50))] {
+        let mut request = json!({"sweep": sweep});
+        if let Some(k) = shards {
+            request["shards"] = json!(k);
+        }
+        if let Some(m) = each {
+            request["points_per_shard"] = json!(m);
+        }
+        let (status, _, plan) = app.post("/v1/sweeps/plan", &request).await;
+        assert_eq!(status, StatusCode::OK, "{plan}");
+        assert_eq!(plan["points"], 183);
+        let ranges: Vec<(u64, u64)> = plan["ranges"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| (r["start"].as_u64().unwrap(), r["end"].as_u64().unwrap()))
+            .collect();
+        assert_eq!(ranges.len() as u64, shards.unwrap_or(183_u64.div_ceil(50)));
+        assert_eq!(ranges.first().unwrap().0, 0);
+        assert_eq!(ranges.last().unwrap().1, 183);
+        assert!(ranges.windows(2).all(|w| w[0].1 == w[1].0), "{ranges:?}");
+        for accept in ["text/csv", "application/x-ndjson"] {
+            let (_, _, whole) = app.post_accept("/v1/sweeps", accept, &sweep).await;
+            let mut joined = Vec::new();
+            for &(start, end) in &ranges {
+                let mut slice = sweep.clone();
+                slice["range"] = json!({"start": start, "end": end});
+                let (status, headers, bytes) = app.post_accept("/v1/sweeps", accept, &slice).await;
+                assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&bytes));
+                assert_eq!(headers["x-sweep-points"], (end - start).to_string().as_str());
+                assert_eq!(headers["x-sweep-total-points"], "183");
+                assert_eq!(headers["x-sweep-range"], format!("{start}-{end}").as_str());
+                let body = if accept == "text/csv" {
+                    // Each slice repeats the header line.
+                    let at = bytes.iter().position(|&b| b == b'\n').unwrap() + 1;
+                    if joined.is_empty() {
+                        joined.extend_from_slice(&bytes[..at]);
+                    }
+                    bytes[at..].to_vec()
+                } else {
+                    bytes
+                };
+                joined.extend(body);
+            }
+            assert_eq!(
+                String::from_utf8(joined).unwrap(),
+                String::from_utf8(whole).unwrap()
+            );
+        }
+    }
+    let whole = json_table(&app, &sweep).await;
+    let mut slice = sweep.clone();
+    slice["range"] = json!({"start": 60, "end": 70});
+    let part = json_table(&app, &slice).await;
+    assert_eq!(part["rows"], json!(whole["rows"].as_array().unwrap()[60..70]));
+    assert_eq!(
+        (&part["points"], &part["total_points"], &part["range"]),
+        (&json!(10), &json!(183), &json!({"start": 60, "end": 70}))
+    );
+}
+
+/// The point limit applies to a range: a grid far above the limit is served
+/// in slices, and the plan refuses shards that would exceed it.
+#[tokio::test]
+async fn a_grid_above_the_limit_is_served_in_ranges_and_bad_ranges_are_422() {
+    let config = ServiceConfig {
+        max_sweep_points: 1000,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let mut big = two_axis_sweep();
+    big["axes"][0]["linspace"]["count"] = json!(1_000_000_000_000_u64);
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &big).await;
+    let problem: Value = serde_json::from_slice(&bytes).unwrap();
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(
+        problem["detail"].as_str().unwrap().contains("\"range\""),
+        "{problem}"
+    );
+
+    let (status, _, plan) = app
+        .post("/v1/sweeps/plan", &json!({"sweep": big, "shards": 10}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(plan["pointer"], "/shards");
+    assert!(
+        plan["detail"]
+            .as_str()
+            .unwrap()
+            .contains("at least 3000000000 shards"),
+        "{plan}"
+    );
+    let (status, _, plan) = app
+        .post(
+            "/v1/sweeps/plan",
+            &json!({"sweep": big, "points_per_shard": 1000}),
+        )
+        .await;
+    assert_eq!(
+        (status, &plan["pointer"]),
+        (StatusCode::UNPROCESSABLE_ENTITY, &json!("/points_per_shard"))
+    );
+    let mut last = big.clone();
+    last["range"] = json!({"start": 2_999_999_999_900_u64, "end": 3_000_000_000_000_u64});
+    let (status, _, plan) = app
+        .post("/v1/sweeps/plan", &json!({"sweep": last, "points_per_shard": 30}))
+        .await;
+    assert_eq!(status, StatusCode::OK, "{plan}");
+    assert_eq!(plan["points"], 3_000_000_000_000_u64);
+    assert_eq!(plan["ranges"].as_array().unwrap().len(), 4);
+    assert_eq!(
+        plan["ranges"][3],
+        json!({"start": 2_999_999_999_990_u64, "end": 3_000_000_000_000_u64})
+    );
+
+    // The last 100 points of a 3·10^12-point grid, streamed.
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &last).await;
+    assert_eq!(status, StatusCode::OK);
+    let text = String::from_utf8(bytes).unwrap();
+    assert_eq!(text.lines().count(), 101);
+    assert!(text.lines().last().unwrap().starts_with("5.0,0.2,"), "{text}");
+
+    for (range, detail) in [
+        (json!({"start": 5, "end": 4}), "not within"),
+        (json!({"start": 0, "end": 3_000_000_000_001_u64}), "not within"),
+        (json!({"start": 0, "end": 1001}), "the limit is 1000"),
+    ] {
+        let mut bad = big.clone();
+        bad["range"] = range;
+        let (status, _, bytes) = app.post_accept("/v1/sweeps", "text/csv", &bad).await;
+        let problem: Value = serde_json::from_slice(&bytes).unwrap();
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+        assert_eq!(problem["pointer"], "/range");
+        assert!(problem["detail"].as_str().unwrap().contains(detail), "{problem}");
+    }
+    let (status, _, plan) = app
+        .post("/v1/sweeps/plan", &json!({"sweep": two_axis_sweep()}))
+        .await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{plan}");
+    let mut bad_base = two_axis_sweep();
+    bad_base["base"]["restitution"] = json!("high");
+    let (status, _, plan) = app
+        .post("/v1/sweeps/plan", &json!({"sweep": bad_base, "shards": 2}))
+        .await;
+    assert_eq!(
+        (status, &plan["pointer"]),
+        (
+            StatusCode::UNPROCESSABLE_ENTITY,
+            &json!("/sweep/base/restitution")
+        )
+    );
+}

@@ -160,6 +160,37 @@ pub enum GridError {
         /// The limit.
         limit: u64,
     },
+    /// A range that is not a slice of the sweep's points.
+    #[error(
+        "the range [{start}, {end}) is not within the sweep's {points} points (0 ≤ start ≤ end ≤ {points})"
+    )]
+    RangeOutside {
+        /// First point asked for.
+        start: u64,
+        /// One past the last point asked for.
+        end: u64,
+        /// The sweep's number of points.
+        points: u64,
+    },
+    /// A range of more points than the limit.
+    #[error("the range [{start}, {end}) has {} points; the limit is {limit}", end - start)]
+    RangeTooLarge {
+        /// First point asked for.
+        start: u64,
+        /// One past the last point asked for.
+        end: u64,
+        /// The limit.
+        limit: u64,
+    },
+}
+
+/// Splits `points` into `shards` consecutive ranges that tile `[0, points)`,
+/// their lengths differing by at most one (the first `points mod shards` are
+/// the longer). With more shards than points, the last ranges are empty.
+pub fn shard(points: u64, shards: u64, index: u64) -> std::ops::Range<u64> {
+    debug_assert!(shards > 0 && index < shards);
+    let at = |i: u64| (u128::from(points) * u128::from(i) / u128::from(shards)) as u64;
+    at(index)..at(index + 1)
 }
 
 /// Counts the points of `axes` combined by `combine`, refusing more than `limit`
@@ -328,6 +359,25 @@ mod tests {
             count_points(&[&million, &million], Combine::Zip, 10_000_000),
             Ok(1_000_000)
         );
+    }
+
+    #[test]
+    fn shards_tile_the_points_evenly() {
+        for points in [0u64, 1, 7, 100, 1_000_003, u64::MAX] {
+            for shards in [1u64, 2, 3, 8, 1000] {
+                let mut next = 0;
+                let mut lens = Vec::new();
+                for i in 0..shards {
+                    let r = shard(points, shards, i);
+                    assert_eq!(r.start, next);
+                    next = r.end;
+                    lens.push(r.end - r.start);
+                }
+                assert_eq!(next, points);
+                let (lo, hi) = (lens.iter().min().unwrap(), lens.iter().max().unwrap());
+                assert!(hi - lo <= 1, "{points} in {shards}: {lo}..{hi}");
+            }
+        }
     }
 
     #[test]

@@ -16,7 +16,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use grid::Odometer;
-pub use grid::{AxisValues, Combine, GridError, count_points};
+pub use grid::{AxisValues, Combine, GridError, count_points, shard};
 
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Case, Precision, Solver};
@@ -61,14 +61,16 @@ pub struct Row<'a> {
     pub outcome: Result<&'a [Cell], &'a ImpactError>,
 }
 
-/// A case over a grid of points.
+/// A case over a grid of points, or over one range of them (a slice of the
+/// grid's point order, addressed by the points' indices in the whole grid).
 #[derive(Debug)]
 pub struct Sweep<C: SweepCase> {
     case: C,
     base: C::Point,
     axes: Vec<Axis<C::Param>>,
     combine: Combine,
-    points: u64,
+    total: u64,
+    range: Range<u64>,
 }
 
 impl<C: SweepCase> Sweep<C> {
@@ -81,20 +83,69 @@ impl<C: SweepCase> Sweep<C> {
         combine: Combine,
         limit: u64,
     ) -> Result<Self, GridError> {
+        Self::slice(case, base, axes, combine, None, limit)
+    }
+
+    /// The points of `range` (all when `None`) of the sweep of `case` from
+    /// `base` over `axes`, refusing a range outside the grid, and more than
+    /// `limit` points in the range, before anything is computed. The grid
+    /// itself may be larger than the limit when a range is given.
+    pub fn slice(
+        case: C,
+        base: C::Point,
+        axes: Vec<Axis<C::Param>>,
+        combine: Combine,
+        range: Option<Range<u64>>,
+        limit: u64,
+    ) -> Result<Self, GridError> {
         let values: Vec<&AxisValues> = axes.iter().map(|a| &a.values).collect();
-        let points = count_points(&values, combine, limit)?;
+        let (total, range) = match range {
+            None => {
+                let total = count_points(&values, combine, limit)?;
+                (total, 0..total)
+            }
+            Some(range) => {
+                let total = count_points(&values, combine, u64::MAX)?;
+                if range.start > range.end || range.end > total {
+                    return Err(GridError::RangeOutside {
+                        start: range.start,
+                        end: range.end,
+                        points: total,
+                    });
+                }
+                if range.end - range.start > limit {
+                    return Err(GridError::RangeTooLarge {
+                        start: range.start,
+                        end: range.end,
+                        limit,
+                    });
+                }
+                (total, range)
+            }
+        };
         Ok(Sweep {
             case,
             base,
             axes,
             combine,
-            points,
+            total,
+            range,
         })
     }
 
-    /// Number of points.
+    /// Number of points this sweep computes (those of its range).
     pub fn points(&self) -> u64 {
-        self.points
+        self.range.end - self.range.start
+    }
+
+    /// Number of points of the whole grid.
+    pub fn total_points(&self) -> u64 {
+        self.total
+    }
+
+    /// The points this sweep computes, as indices into the whole grid.
+    pub fn range(&self) -> Range<u64> {
+        self.range.clone()
     }
 
     /// The axes.
@@ -112,12 +163,15 @@ impl<C: SweepCase> Sweep<C> {
         &self.case
     }
 
-    /// Evaluates the points in `range`, in order, handing each to `visit`.
+    /// Evaluates the points in `range` (indices into the whole grid, clipped to
+    /// the sweep's own range), in order, handing each to `visit`.
     pub fn for_each_in(&self, range: Range<u64>, mut visit: impl FnMut(Row<'_>)) {
-        let end = range.end.min(self.points);
-        if range.start >= end {
+        let start = range.start.max(self.range.start);
+        let end = range.end.min(self.range.end);
+        if start >= end {
             return;
         }
+        let range = start..end;
         let lens = self.axes.iter().map(|a| a.values.len()).collect();
         let mut odometer = Odometer::at(lens, self.combine, range.start);
         let mut values = vec![0.0; self.axes.len()];
@@ -141,7 +195,7 @@ impl<C: SweepCase> Sweep<C> {
         }
     }
 
-    /// Evaluates the sweep in chunks of `chunk` points: `produce` turns a range
+    /// Evaluates the sweep's range in chunks of `chunk` points: `produce` turns a range
     /// into a value (rows formatted as bytes, say) on the worker threads, and
     /// `consume` receives the values in point order. Stops early, returning
     /// `false`, when `consume` returns `false`. At most twice as many chunks as
@@ -154,9 +208,9 @@ impl<C: SweepCase> Sweep<C> {
     ) -> bool {
         let chunk = chunk.max(1);
         let batch = chunk.saturating_mul(2 * rayon::current_num_threads().max(1) as u64);
-        let mut start = 0;
-        while start < self.points {
-            let end = start.saturating_add(batch).min(self.points);
+        let mut start = self.range.start;
+        while start < self.range.end {
+            let end = start.saturating_add(batch).min(self.range.end);
             let ranges: Vec<Range<u64>> = (start..end)
                 .step_by(chunk as usize)
                 .map(|s| s..s.saturating_add(chunk).min(end))
@@ -243,6 +297,7 @@ mod tests {
     use super::*;
 
     /// A toy case: the output is the sum of the point's two inputs; negative sums fail.
+    #[derive(Debug)]
     struct Sum;
 
     impl SweepCase for Sum {
@@ -306,6 +361,55 @@ mod tests {
         assert_eq!(rows[8], (8, vec![20.0, 2.0], Some(22.0)));
         // Any sub-range gives the same rows as the whole.
         assert_eq!(collect(&s, 4..7), rows[4..7].to_vec());
+    }
+
+    #[test]
+    fn ranges_compute_their_own_points_and_tile_the_whole() {
+        let whole = collect(&sweep(Combine::Product), 0..9);
+        let axes = sweep(Combine::Product).axes;
+        let mut tiled = Vec::new();
+        for r in [0..4, 4..4, 4..9] {
+            // The limit applies to the range: a grid of 9 points in slices of at most 5.
+            let s = Sweep::slice(Sum, [0.0; 2], axes.clone(), Combine::Product, Some(r.clone()), 5).unwrap();
+            assert_eq!((s.points(), s.total_points()), (r.end - r.start, 9));
+            let mut rows = Vec::new();
+            s.run_parallel(
+                2,
+                |r| collect(&s, r),
+                |chunk| {
+                    rows.extend(chunk);
+                    true
+                },
+            );
+            assert_eq!(rows, collect(&s, 0..9));
+            tiled.extend(rows);
+        }
+        assert_eq!(tiled, whole);
+        let slice = |r: Range<u64>, limit| {
+            Sweep::slice(Sum, [0.0; 2], axes.clone(), Combine::Product, Some(r), limit)
+        };
+        assert_eq!(
+            slice(3..10, 100).unwrap_err(),
+            GridError::RangeOutside {
+                start: 3,
+                end: 10,
+                points: 9
+            }
+        );
+        #[allow(clippy::reversed_empty_ranges)]
+        let reversed = 5..3;
+        assert!(matches!(
+            slice(reversed, 100),
+            Err(GridError::RangeOutside { .. })
+        ));
+        assert_eq!(
+            slice(0..9, 8).unwrap_err(),
+            GridError::RangeTooLarge {
+                start: 0,
+                end: 9,
+                limit: 8
+            }
+        );
     }
 
     #[test]

@@ -25,6 +25,8 @@ pub(super) struct RowWriter {
     pub(super) precision: Precision,
     /// Axis paths, then output pointers.
     pub(super) names: Vec<&'static str>,
+    /// Index of the sweep's first point (its range's start).
+    pub(super) first: u64,
 }
 
 impl RowWriter {
@@ -75,7 +77,7 @@ impl RowWriter {
                 out.extend_from_slice(b"\r\n");
             }
             Format::Json => {
-                if row.index > 0 {
+                if row.index > self.first {
                     out.push(b',');
                 }
                 out.push(b'[');
@@ -167,8 +169,12 @@ pub(super) fn table<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter) -> Vec<u
     );
     out.extend_from_slice(
         format!(
-            "],\"points\":{},\"errors\":{errors},\"precision\":\"{}\"}}",
+            "],\"points\":{},\"total_points\":{},\"range\":{{\"start\":{},\"end\":{}}},\
+             \"errors\":{errors},\"precision\":\"{}\"}}",
             sweep.points(),
+            sweep.total_points(),
+            sweep.range().start,
+            sweep.range().end,
             writer.precision.as_str()
         )
         .as_bytes(),

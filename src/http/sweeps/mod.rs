@@ -10,6 +10,7 @@
 
 mod encode;
 mod negotiate;
+mod plan;
 mod plot;
 mod request;
 mod stream;
@@ -26,10 +27,12 @@ use utoipa_axum::routes;
 
 use self::encode::{RowWriter, table};
 pub use self::negotiate::{Format, negotiate};
-pub use self::request::{AxisDto, CaseDto, CombineDto, RangeDto, SweepRequest, SweepTable};
+pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
+pub use self::request::{AxisDto, CaseDto, CombineDto, RangeDto, SliceDto, SweepRequest, SweepTable};
 pub use self::stream::Streams;
 use self::stream::stream;
 use super::ServiceConfig;
+use super::dto::PrecisionDto;
 use super::extract::{ApiJson, parse_value};
 use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest};
 use super::planar::PlanarContactRequest;
@@ -38,9 +41,11 @@ use super::spatial::SpatialContactRequest;
 use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
 use crate::sweep::{CaseSweep, Sweep};
 
-/// The sweep endpoint, with its OpenAPI operation.
+/// The sweep endpoints (`/v1/sweeps`, `/v1/sweeps/plan`), with their OpenAPI operations.
 pub fn router() -> OpenApiRouter {
-    OpenApiRouter::new().routes(routes!(sweeps))
+    OpenApiRouter::new()
+        .routes(routes!(sweeps))
+        .routes(routes!(plan::plan))
 }
 
 /// Sweep one case over a grid of inputs.
@@ -56,7 +61,11 @@ pub fn router() -> OpenApiRouter {
     tag = "sweeps",
     request_body(content = SweepRequest, content_type = "application/json"),
     responses(
-        (status = 200, description = "The sweep's points", headers(("x-sweep-points" = u64, description = "Number of points")),
+        (status = 200, description = "The sweep's points", headers(
+            ("x-sweep-points" = u64, description = "Number of points in this answer"),
+            ("x-sweep-total-points" = u64, description = "Number of points of the whole sweep"),
+            ("x-sweep-range" = String, description = "The answer's points as `start-end` (end excluded)"),
+         ),
          content(
             (SweepTable = "application/json"),
             (String = "application/x-ndjson"),
@@ -81,54 +90,95 @@ pub async fn sweeps(
         config.max_sweep_points
     };
     let stall = Duration::from_millis(config.sweep_stall_timeout_ms);
+    let (sweep, precision) = build(&request, limit, format)?;
+    on_sweep!(sweep, s => respond(s, format, precision, stall, &streams).await)
+}
+
+/// A checked sweep of any case.
+#[derive(Debug)]
+pub enum AnySweep {
+    /// The normal, oblique and tangential cases.
+    Planar(Sweep<CaseSweep<PlanarImpact>>),
+    /// The torsional case.
+    Torsional(Sweep<CaseSweep<TorsionalImpact>>),
+    /// Two bodies in the plane.
+    Bodies(Sweep<CaseSweep<BodiesImpact>>),
+    /// The contact in space.
+    Spatial(Sweep<CaseSweep<SpatialImpact>>),
+}
+
+/// Runs `$body` with `$s` bound to the sweep inside an [`AnySweep`].
+macro_rules! on_sweep {
+    ($any:expr, $s:ident => $body:expr) => {
+        match $any {
+            AnySweep::Planar($s) => $body,
+            AnySweep::Torsional($s) => $body,
+            AnySweep::Bodies($s) => $body,
+            AnySweep::Spatial($s) => $body,
+        }
+    };
+}
+pub(crate) use on_sweep;
+
+/// Checks a sweep request whole (base, axes, outputs, precision, range, the
+/// point limit for the format) and builds its sweep.
+pub fn build(request: &SweepRequest, limit: u64, format: Format) -> Result<(AnySweep, Precision), ApiError> {
+    fn checked<C: Case>(
+        request: &SweepRequest,
+        base: C,
+        base_precision: PrecisionDto,
+        limit: u64,
+        format: Format,
+    ) -> Result<(Sweep<CaseSweep<C>>, Precision), ApiError> {
+        let precision = request::precision(request.precision, base_precision)?;
+        Ok((
+            request::sweep(request, base, precision, limit, format)?,
+            precision,
+        ))
+    }
     let base = request.base.clone();
-    match request.case {
+    Ok(match request.case {
         CaseDto::Normal => {
             let base: NormalRequest = parse_value(base, "/base")?;
             let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(request, impact, base.precision, limit, format)?;
+            (AnySweep::Planar(s), p)
         }
         CaseDto::Oblique => {
             let base: ObliqueRequest = parse_value(base, "/base")?;
             let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(request, impact, base.precision, limit, format)?;
+            (AnySweep::Planar(s), p)
         }
         CaseDto::Tangential => {
             let base: TangentialRequest = parse_value(base, "/base")?;
-            let impact = PlanarImpact::from(&base);
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(request, PlanarImpact::from(&base), base.precision, limit, format)?;
+            (AnySweep::Planar(s), p)
         }
         CaseDto::Torsional => {
             let base: TorsionalRequest = parse_value(base, "/base")?;
-            let impact = TorsionalImpact::from(&base);
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(
+                request,
+                TorsionalImpact::from(&base),
+                base.precision,
+                limit,
+                format,
+            )?;
+            (AnySweep::Torsional(s), p)
         }
         CaseDto::Planar => {
             let base: PlanarContactRequest = parse_value(base, "/base")?;
             let impact = BodiesImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(request, impact, base.precision, limit, format)?;
+            (AnySweep::Bodies(s), p)
         }
         CaseDto::Spatial => {
             let base: SpatialContactRequest = parse_value(base, "/base")?;
             let impact = SpatialImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            run(&request, impact, base.precision, limit, format, stall, &streams).await
+            let (s, p) = checked(request, impact, base.precision, limit, format)?;
+            (AnySweep::Spatial(s), p)
         }
-    }
-}
-
-/// Checks and answers the sweep of one case's base impact.
-async fn run<C: Case>(
-    request: &SweepRequest,
-    base: C,
-    base_precision: crate::http::dto::PrecisionDto,
-    limit: u64,
-    format: Format,
-    stall: Duration,
-    streams: &Streams,
-) -> Result<Response, ApiError> {
-    let precision = request::precision(request.precision, base_precision)?;
-    let sweep = request::sweep(request, base, precision, limit, format)?;
-    respond(sweep, format, precision, stall, streams).await
+    })
 }
 
 /// Produces the response: buffered (JSON, SVG) or streamed (CSV, NDJSON).
@@ -144,10 +194,13 @@ async fn respond<C: Case>(
     let mut names = axis_names.clone();
     names.extend(&outputs);
     let points = sweep.points();
+    let range = sweep.range();
+    let total = sweep.total_points();
     let writer = RowWriter {
         format,
         precision,
         names,
+        first: range.start,
     };
     let body = match format {
         Format::Svg => {
@@ -174,6 +227,10 @@ async fn respond<C: Case>(
         HeaderValue::from_static(format.content_type()),
     );
     headers.insert("x-sweep-points", HeaderValue::from(points));
+    headers.insert("x-sweep-total-points", HeaderValue::from(total));
+    if let Ok(value) = HeaderValue::from_str(&format!("{}-{}", range.start, range.end)) {
+        headers.insert("x-sweep-range", value);
+    }
     headers.insert("x-precision", HeaderValue::from_static(precision.as_str()));
     Ok(response)
 }

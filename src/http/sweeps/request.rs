@@ -54,6 +54,18 @@ pub struct RangeDto {
     pub count: u64,
 }
 
+/// A slice of a sweep's points: the points with indices `start ≤ i < end` in
+/// the sweep's own order (the first axis varies slowest). Ranges that tile
+/// `[0, N)` give rows that concatenate to exactly the whole sweep's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SliceDto {
+    /// Index of the first point (from 0).
+    pub start: u64,
+    /// Index one past the last point (≤ the sweep's number of points).
+    pub end: u64,
+}
+
 /// One axis: the input it sets and exactly one of `values`, `linspace`, `logspace`.
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -102,6 +114,10 @@ pub struct SweepRequest {
     /// Arithmetic precision: `fast` or `exact`. Absent: the base's `precision`,
     /// else `fast`; when both are given they must agree.
     pub precision: Option<PrecisionDto>,
+    /// Only these points of the sweep (all when absent). The point limit applies
+    /// to the range, so a grid larger than the limit is computed in slices;
+    /// `POST /v1/sweeps/plan` gives the ranges.
+    pub range: Option<SliceDto>,
 }
 
 /// A sweep as one JSON table. Columns are the axis paths, the output pointers and
@@ -114,8 +130,12 @@ pub struct SweepTable {
     /// One row per point, in axis order.
     #[schema(schema_with = rows_schema)]
     pub rows: Vec<Vec<serde_json::Value>>,
-    /// Number of points.
+    /// Number of points in this answer (its range's).
     pub points: u64,
+    /// Number of points of the whole sweep.
+    pub total_points: u64,
+    /// The points this answer holds.
+    pub range: SliceDto,
     /// Number of points without an answer.
     pub errors: u64,
     /// The precision that produced the answers.
@@ -298,7 +318,8 @@ pub(super) fn sweep<C: Case>(
         .zip(values)
         .map(|(param, values)| Axis { param, values })
         .collect();
-    Sweep::new(case, base, axes, combine, limit).map_err(|error| grid_error(&error, format))
+    let range = request.range.map(|r| r.start..r.end);
+    Sweep::slice(case, base, axes, combine, range, limit).map_err(|error| grid_error(&error, format))
 }
 
 /// A grid error as a problem naming its axis.
@@ -308,15 +329,28 @@ fn grid_error(error: &GridError, format: Format) -> ApiError {
         GridError::Empty { axis } | GridError::ZipLengths { axis, .. } => format!("/axes/{axis}"),
         GridError::NotFinite { axis, index } => format!("/axes/{axis}/values/{index}"),
         GridError::LogspaceBounds { axis } => format!("/axes/{axis}/logspace"),
+        GridError::RangeOutside { .. } | GridError::RangeTooLarge { .. } => "/range".to_owned(),
     };
+    let too_large = matches!(
+        error,
+        GridError::TooManyPoints { .. } | GridError::RangeTooLarge { .. }
+    );
     let mut detail = error.to_string();
-    if matches!(error, GridError::TooManyPoints { .. }) && format.is_buffered() {
+    if too_large && format.is_buffered() {
         detail.push_str(
-            " for application/json and image/svg+xml; text/csv and application/x-ndjson stream larger sweeps",
+            " for application/json and image/svg+xml; text/csv, application/x-ndjson and \
+             application/vnd.apache.arrow.stream stream larger ones",
         );
     }
-    let title = if matches!(error, GridError::TooManyPoints { .. }) {
+    if matches!(error, GridError::TooManyPoints { .. }) {
+        detail.push_str(
+            "; compute it in slices with \"range\" (POST /v1/sweeps/plan gives ranges that tile it)",
+        );
+    }
+    let title = if too_large {
         "Sweep too large"
+    } else if matches!(error, GridError::RangeOutside { .. }) {
+        "Invalid sweep range"
     } else {
         "Invalid sweep axis"
     };
