@@ -333,6 +333,11 @@ quantities! {
 }
 
 impl Output {
+    /// Whether this output is a name (a regime), not a number.
+    pub fn is_name(self) -> bool {
+        matches!(self, Output::Regime | Output::TorsionalRegime)
+    }
+
     /// Whether computing this output needs the energies.
     pub fn needs_energy(self) -> bool {
         matches!(

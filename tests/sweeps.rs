@@ -3,6 +3,7 @@
 
 mod common;
 
+use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
 use common::server::{TestApp, spawn_app};
@@ -802,4 +803,135 @@ async fn a_grid_above_the_limit_is_served_in_ranges_and_bad_ranges_are_422() {
             &json!("/sweep/base/restitution")
         )
     );
+}
+
+/// Reads an Arrow IPC stream into its schema metadata and rows of cells
+/// (`None` for null, numbers as f64, names as text).
+fn read_arrow(bytes: &[u8]) -> (HashMap<String, String>, Vec<String>, Rows) {
+    use arrow_array::cast::AsArray;
+    use arrow_array::types::{Float64Type, Int16Type};
+    use arrow_array::{Array, StringArray};
+    let reader = arrow_ipc::reader::StreamReader::try_new(bytes, None).expect("an Arrow stream");
+    let schema = reader.schema();
+    let names = schema.fields().iter().map(|f| f.name().clone()).collect();
+    let mut rows = Vec::new();
+    for batch in reader {
+        let batch = batch.expect("a record batch");
+        let start = rows.len();
+        rows.extend((0..batch.num_rows()).map(|_| Vec::new()));
+        for column in batch.columns() {
+            for (i, row) in rows[start..].iter_mut().enumerate() {
+                row.push(if column.is_null(i) {
+                    None
+                } else if let Some(numbers) = column.as_primitive_opt::<Float64Type>() {
+                    Some(Cell::Number(numbers.value(i)))
+                } else {
+                    let names = column.as_dictionary::<Int16Type>();
+                    let values = names.values().as_any().downcast_ref::<StringArray>().unwrap();
+                    Some(Cell::Name(
+                        values.value(names.keys().value(i) as usize).to_owned(),
+                    ))
+                });
+            }
+        }
+    }
+    (schema.metadata().clone().into(), names, rows)
+}
+
+/// Rows of cells, `None` for an empty cell.
+type Rows = Vec<Vec<Option<Cell>>>;
+
+#[derive(Debug, Clone, PartialEq)]
+enum Cell {
+    Number(f64),
+    Name(String),
+}
+
+/// CSV rows as cells: an empty cell is `None`, a number parses to the exact
+/// double its shortest round-trip text names.
+fn read_csv(bytes: &[u8]) -> (Vec<String>, Rows) {
+    let text = String::from_utf8(bytes.to_vec()).unwrap();
+    let mut lines = text.lines();
+    let names = lines.next().unwrap().split(',').map(str::to_owned).collect();
+    let rows = lines
+        .map(|line| {
+            line.split(',')
+                .map(|c| match c {
+                    "" => None,
+                    c => Some(
+                        c.parse::<f64>()
+                            .map_or_else(|_| Cell::Name(c.to_owned()), Cell::Number),
+                    ),
+                })
+                .collect()
+        })
+        .collect();
+    (names, rows)
+}
+
+/// Arrow and CSV carry the same rows bit for bit: numbers, regimes, nulls and
+/// error titles, over several record batches with names first met late in the
+/// stream (dictionary deltas).
+#[tokio::test]
+async fn arrow_rows_equal_csv_rows_bit_for_bit() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let mut sweep = json!({
+        "case": "tangential",
+        "base": maw_base(),
+        "axes": [
+            {"path": "/velocity/normal", "linspace": {"start": -3.0, "stop": 0.5, "count": 700}},
+            {"path": "/velocity/tangential", "linspace": {"start": -1.0, "stop": 5.0, "count": 100}}
+        ]
+    });
+    let (status, headers, arrow) = app
+        .post_accept("/v1/sweeps", "application/vnd.apache.arrow.stream", &sweep)
+        .await;
+    assert_eq!(status, StatusCode::OK, "{}", String::from_utf8_lossy(&arrow));
+    assert_eq!(headers["content-type"], "application/vnd.apache.arrow.stream");
+    let (_, _, csv) = app.post_accept("/v1/sweeps", "text/csv", &sweep).await;
+    let (metadata, arrow_names, arrow_rows) = read_arrow(&arrow);
+    let (csv_names, csv_rows) = read_csv(&csv);
+    assert_eq!(arrow_names, csv_names);
+    assert_eq!(arrow_rows.len(), 70_000);
+    let differing = arrow_rows.iter().zip(&csv_rows).position(|(a, c)| {
+        a.len() != c.len()
+            || a.iter().zip(c).any(|(a, c)| match (a, c) {
+                (Some(Cell::Number(a)), Some(Cell::Number(c))) => a.to_bits() != c.to_bits(),
+                _ => a != c,
+            })
+    });
+    assert_eq!(
+        differing,
+        None,
+        "{:?}",
+        differing.map(|i| (&arrow_rows[i], &csv_rows[i]))
+    );
+    assert_eq!(
+        arrow_rows,
+        csv_rows.iter().map(|r| r.to_vec()).collect::<Vec<_>>()
+    );
+    let errors = arrow_rows.iter().filter(|r| r.last().unwrap().is_some()).count();
+    assert!(errors > 0 && errors < 70_000, "{errors}");
+    assert_eq!(metadata["restitution.model_version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(metadata["restitution.total_points"], "70000");
+    assert_eq!(metadata["restitution.sweep_sha256"].len(), 64);
+
+    // A slice: the same hash, its own range, the same rows.
+    sweep["range"] = json!({"start": 60_000, "end": 70_000});
+    let (_, _, part) = app
+        .post_accept("/v1/sweeps", "application/vnd.apache.arrow.stream", &sweep)
+        .await;
+    let (part_metadata, _, part_rows) = read_arrow(&part);
+    assert_eq!(
+        part_metadata["restitution.sweep_sha256"],
+        metadata["restitution.sweep_sha256"]
+    );
+    assert_eq!(
+        (
+            &part_metadata["restitution.range_start"][..],
+            &part_metadata["restitution.range_end"][..]
+        ),
+        ("60000", "70000")
+    );
+    assert_eq!(part_rows, arrow_rows[60_000..]);
 }

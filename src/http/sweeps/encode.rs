@@ -48,7 +48,7 @@ impl RowWriter {
                 }
                 out.extend_from_slice(b"\"error\"],\"rows\":[");
             }
-            Format::Ndjson | Format::Svg => {}
+            Format::Ndjson | Format::Svg | Format::Arrow => {}
         }
         out
     }
@@ -100,7 +100,7 @@ impl RowWriter {
                 push_error(out, error);
                 out.extend_from_slice(b"}\n");
             }
-            Format::Svg => {}
+            Format::Svg | Format::Arrow => {}
         }
     }
 }

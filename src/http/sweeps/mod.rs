@@ -8,6 +8,7 @@
 //! (`plot.rs`), or streamed (`stream.rs`) in the format `Accept` chose
 //! (`negotiate.rs`).
 
+mod arrow;
 mod encode;
 mod negotiate;
 mod plan;
@@ -15,6 +16,7 @@ mod plot;
 mod request;
 mod stream;
 
+use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -25,6 +27,7 @@ use axum::response::{IntoResponse, Response};
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
+use self::arrow::{ArrowLayout, ArrowSink};
 use self::encode::{RowWriter, table};
 pub use self::negotiate::{Format, negotiate};
 pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
@@ -51,8 +54,11 @@ pub fn router() -> OpenApiRouter {
 /// Sweep one case over a grid of inputs.
 ///
 /// Formats by `Accept`: `application/json` (default; a buffered table),
-/// `application/x-ndjson` and `text/csv` (streamed in point order with bounded
-/// memory), `image/svg+xml` (the first output against the first axis, one series
+/// `application/x-ndjson`, `text/csv` and `application/vnd.apache.arrow.stream`
+/// (an Arrow IPC stream: one record batch per chunk, f64 columns, dictionary
+/// regime and error names, nulls where a point has no answer; the schema's
+/// metadata holds the request's hash and the model version) streamed in point
+/// order with bounded memory, `image/svg+xml` (the first output against the first axis, one series
 /// per value of the other axes). A point without an answer carries the problem's
 /// title in its `error` column; only errors of the sweep's own structure fail it.
 #[utoipa::path(
@@ -71,8 +77,9 @@ pub fn router() -> OpenApiRouter {
             (String = "application/x-ndjson"),
             (String = "text/csv"),
             (String = "image/svg+xml"),
+            (Vec<u8> = "application/vnd.apache.arrow.stream"),
         )),
-        (status = 406, description = "None of application/json, application/x-ndjson, text/csv, image/svg+xml is acceptable",
+        (status = 406, description = "None of application/json, application/x-ndjson, text/csv, application/vnd.apache.arrow.stream, image/svg+xml is acceptable",
          body = Problem, content_type = "application/problem+json"),
         Problems
     )
@@ -91,7 +98,13 @@ pub async fn sweeps(
     };
     let stall = Duration::from_millis(config.sweep_stall_timeout_ms);
     let (sweep, precision) = build(&request, limit, format)?;
-    on_sweep!(sweep, s => respond(s, format, precision, stall, &streams).await)
+    let answer = Answer {
+        format,
+        precision,
+        stall,
+        request: &request,
+    };
+    on_sweep!(sweep, s => respond(s, answer, &streams).await)
 }
 
 /// A checked sweep of any case.
@@ -181,14 +194,46 @@ pub fn build(request: &SweepRequest, limit: u64, format: Format) -> Result<(AnyS
     })
 }
 
-/// Produces the response: buffered (JSON, SVG) or streamed (CSV, NDJSON).
-async fn respond<C: Case>(
-    sweep: Sweep<CaseSweep<C>>,
+/// How to answer a checked sweep.
+struct Answer<'a> {
     format: Format,
     precision: Precision,
     stall: Duration,
+    request: &'a SweepRequest,
+}
+
+/// The Arrow schema's metadata: what the stream is a slice of.
+fn arrow_metadata(
+    request: &SweepRequest,
+    precision: Precision,
+    total: u64,
+    range: &std::ops::Range<u64>,
+) -> HashMap<String, String> {
+    [
+        ("restitution.sweep_sha256", request.sweep_hash()),
+        ("restitution.model_version", env!("CARGO_PKG_VERSION").to_owned()),
+        ("restitution.precision", precision.as_str().to_owned()),
+        ("restitution.total_points", total.to_string()),
+        ("restitution.range_start", range.start.to_string()),
+        ("restitution.range_end", range.end.to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_owned(), v))
+    .collect()
+}
+
+/// Produces the response: buffered (JSON, SVG) or streamed (CSV, NDJSON, Arrow).
+async fn respond<C: Case>(
+    sweep: Sweep<CaseSweep<C>>,
+    answer: Answer<'_>,
     streams: &Streams,
 ) -> Result<Response, ApiError> {
+    let Answer {
+        format,
+        precision,
+        stall,
+        request,
+    } = answer;
     let axis_names: Vec<&'static str> = sweep.axes().iter().map(|a| a.param.path()).collect();
     let outputs: Vec<&'static str> = sweep.case().columns().iter().map(|o| o.path()).collect();
     let mut names = axis_names.clone();
@@ -218,7 +263,20 @@ async fn respond<C: Case>(
                 .map_err(|_| internal())?;
             Body::from(text)
         }
-        Format::Csv | Format::Ndjson => stream(Arc::new(sweep), writer, stall, streams),
+        Format::Csv | Format::Ndjson => {
+            let chunk_points = writer.chunk_points();
+            let rows = writer.clone();
+            let produce = move |sweep: &Sweep<_>, range| encode::chunk(sweep, &rows, range).0;
+            stream(Arc::new(sweep), chunk_points, produce, writer, stall, streams)
+        }
+        Format::Arrow => {
+            let metadata = arrow_metadata(request, precision, total, &range);
+            let layout = Arc::new(ArrowLayout::new(&axis_names, sweep.case().columns(), metadata));
+            let chunk_points = layout.chunk_points();
+            let sink = ArrowSink::new(layout.clone());
+            let produce = move |sweep: &Sweep<_>, range| layout.chunk(sweep, range);
+            stream(Arc::new(sweep), chunk_points, produce, sink, stall, streams)
+        }
     };
     let mut response = (StatusCode::OK, body).into_response();
     let headers = response.headers_mut();

@@ -15,6 +15,8 @@ pub enum Format {
     Csv,
     /// `image/svg+xml`: a buffered plot.
     Svg,
+    /// `application/vnd.apache.arrow.stream`: an Arrow IPC stream, one record batch per chunk.
+    Arrow,
 }
 
 impl Format {
@@ -28,6 +30,7 @@ impl Format {
             Format::Ndjson => "application/x-ndjson",
             Format::Csv => "text/csv; charset=utf-8; header=present",
             Format::Svg => "image/svg+xml",
+            Format::Arrow => "application/vnd.apache.arrow.stream",
         }
     }
 }
@@ -55,6 +58,7 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
                 "application/x-ndjson" | "application/jsonl" => Format::Ndjson,
                 "text/csv" | "text/*" => Format::Csv,
                 "image/svg+xml" | "image/*" => Format::Svg,
+                "application/vnd.apache.arrow.stream" => Format::Arrow,
                 _ => continue,
             };
             if quality > 0.0 {
@@ -72,7 +76,8 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
             StatusCode::NOT_ACCEPTABLE,
             "not-acceptable",
             "Not acceptable",
-            "a sweep is available as application/json, application/x-ndjson, text/csv or image/svg+xml",
+            "a sweep is available as application/json, application/x-ndjson, text/csv, \
+             application/vnd.apache.arrow.stream or image/svg+xml",
         )
     })
 }

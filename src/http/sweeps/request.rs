@@ -31,7 +31,7 @@ pub enum CaseDto {
 }
 
 /// How axes combine into points.
-#[derive(Debug, Clone, Copy, Default, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CombineDto {
     /// Every combination; the first axis varies slowest.
@@ -42,7 +42,7 @@ pub enum CombineDto {
 }
 
 /// Evenly spaced values (linearly, or in logarithm for `logspace`), both ends included.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RangeDto {
     /// First value (logspace: > 0; a value, not an exponent).
@@ -67,7 +67,7 @@ pub struct SliceDto {
 }
 
 /// One axis: the input it sets and exactly one of `values`, `linspace`, `logspace`.
-#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AxisDto {
     /// JSON pointer of a numeric input in `base`, e.g. `/velocity/tangential`.
@@ -83,7 +83,7 @@ pub struct AxisDto {
 }
 
 /// A sweep: one case's request with some inputs swept over axes.
-#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
     "case": "tangential",
@@ -355,4 +355,21 @@ fn grid_error(error: &GridError, format: Format) -> ApiError {
         "Invalid sweep axis"
     };
     structure(pointer, title, detail)
+}
+
+impl SweepRequest {
+    /// SHA-256 (hex) of the request without its `range`, as compact JSON with
+    /// object members in sorted order: every slice of one sweep has the same
+    /// hash, so a client can check that parts it joins belong together.
+    pub fn sweep_hash(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let whole = SweepRequest {
+            range: None,
+            ..self.clone()
+        };
+        // `serde_json::Value` keeps object members sorted (no `preserve_order`).
+        let canonical = serde_json::to_value(&whole).and_then(|v| serde_json::to_vec(&v));
+        let digest = Sha256::digest(canonical.unwrap_or_default());
+        digest.iter().map(|b| format!("{b:02x}")).collect()
+    }
 }

@@ -3,6 +3,7 @@
 //! streamed sweep holds a few chunks in memory whatever its size, and stops
 //! when the client goes away or stops reading.
 
+use std::ops::Range;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
@@ -10,7 +11,7 @@ use std::time::Duration;
 use axum::body::{Body, Bytes};
 use tokio::sync::mpsc;
 
-use super::encode::{RowWriter, chunk};
+use super::encode::RowWriter;
 use crate::sweep::{Sweep, SweepCase};
 
 /// Chunks queued between the workers and the socket.
@@ -42,13 +43,75 @@ impl Drop for ActiveStream {
     }
 }
 
-/// Streams the rows through a bounded channel. The producer stops when the
+/// Turns computed chunks into the bytes of a streamed format, in point order,
+/// on the streaming thread (the chunks themselves are computed on the workers).
+pub(super) trait Sink<T>: Send + 'static {
+    /// The bytes before the first chunk.
+    fn header(&mut self) -> Vec<u8>;
+    /// The bytes of one chunk.
+    fn encode(&mut self, chunk: T) -> Vec<u8>;
+    /// The bytes after the last chunk.
+    fn trailer(&mut self) -> Vec<u8> {
+        Vec::new()
+    }
+}
+
+/// Text rows: chunks are already formatted on the workers.
+impl Sink<Vec<u8>> for RowWriter {
+    fn header(&mut self) -> Vec<u8> {
+        RowWriter::header(self)
+    }
+    fn encode(&mut self, chunk: Vec<u8>) -> Vec<u8> {
+        chunk
+    }
+}
+
+/// Computes `sweep` in parallel chunks of `chunk_points` with `produce` and
+/// hands the sink's bytes to `send`, in order; stops, returning `false`, as
+/// soon as `send` returns `false` (the reader went away) or `stop()` is true
+/// (checked by the workers before each chunk).
+pub(super) fn drive<C, T, P, S>(
+    sweep: &Sweep<C>,
+    chunk_points: u64,
+    produce: P,
+    mut sink: S,
+    stop: impl Fn() -> bool + Sync,
+    mut send: impl FnMut(Vec<u8>) -> bool,
+) -> bool
+where
+    C: SweepCase,
+    T: Send,
+    P: Fn(&Sweep<C>, Range<u64>) -> T + Sync,
+    S: Sink<T>,
+{
+    if !send(sink.header()) {
+        return false;
+    }
+    let finished = sweep.run_parallel(
+        chunk_points,
+        |range| (!stop()).then(|| produce(sweep, range)),
+        |chunk| chunk.is_some_and(|chunk| send(sink.encode(chunk))),
+    );
+    finished && send(sink.trailer())
+}
+
+/// Streams a sweep through a bounded channel. The producer stops when the
 /// client disconnects (the channel closes) or stops reading for `stall`; an
 /// incomplete stream ends with an error so the client sees a broken body, not
 /// a short one.
-pub(super) fn stream<C>(sweep: Arc<Sweep<C>>, writer: RowWriter, stall: Duration, streams: &Streams) -> Body
+pub(super) fn stream<C, T, P, S>(
+    sweep: Arc<Sweep<C>>,
+    chunk_points: u64,
+    produce: P,
+    sink: S,
+    stall: Duration,
+    streams: &Streams,
+) -> Body
 where
     C: SweepCase + Send + 'static,
+    T: Send + 'static,
+    P: Fn(&Sweep<C>, Range<u64>) -> T + Send + Sync + 'static,
+    S: Sink<T>,
 {
     let (tx, rx) = mpsc::channel::<Bytes>(QUEUED_CHUNKS);
     let complete = Arc::new(AtomicBool::new(false));
@@ -62,20 +125,7 @@ where
                 .block_on(tx.send_timeout(Bytes::from(bytes), stall))
                 .is_ok()
         };
-        if !send(writer.header()) {
-            return;
-        }
-        let finished = sweep.run_parallel(
-            writer.chunk_points(),
-            |range| {
-                if tx.is_closed() {
-                    return Vec::new();
-                }
-                chunk(&sweep, &writer, range).0
-            },
-            &send,
-        );
-        if finished {
+        if drive(&sweep, chunk_points, produce, sink, || tx.is_closed(), send) {
             done.store(true, Ordering::Release);
         } else {
             tracing::info!("sweep stream stopped: the client went away or stopped reading");
