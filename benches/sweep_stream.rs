@@ -79,6 +79,8 @@ fn start() -> (Server, Duration) {
     (server, elapsed)
 }
 
+const ARROW: &str = "application/vnd.apache.arrow.stream";
+
 struct Run {
     rows: u64,
     bytes: u64,
@@ -122,10 +124,25 @@ async fn stream(server: &Server, accept: &str, points: u64, outputs: Option<&[&s
         .await
         .expect("send");
     assert!(response.status().is_success(), "{}", response.status());
-    let (mut bytes, mut lines) = (0u64, 0u64);
+    let (mut bytes, mut lines, mut batches) = (0u64, 0u64, 0u64);
+    let arrow = accept == ARROW;
+    // Arrow: record batches decoded as they arrive (zero-copy), as a reader would.
+    let mut decoder = arrow_ipc::reader::StreamDecoder::new();
     while let Some(chunk) = response.chunk().await.expect("a complete body") {
         bytes += chunk.len() as u64;
-        lines += chunk.iter().filter(|&&b| b == b'\n').count() as u64;
+        if arrow {
+            let mut buffer = arrow_buffer::Buffer::from(chunk.to_vec());
+            while let Some(batch) = decoder.decode(&mut buffer).expect("an Arrow stream") {
+                lines += batch.num_rows() as u64;
+                batches += 1;
+            }
+        } else {
+            lines += chunk.iter().filter(|&&b| b == b'\n').count() as u64;
+        }
+    }
+    if arrow {
+        decoder.finish().expect("a complete Arrow stream");
+        assert!(batches > 0);
     }
     let seconds = started.elapsed().as_secs_f64();
     running.store(false, Ordering::Relaxed);
@@ -164,8 +181,10 @@ fn main() {
     for (accept, outputs, n) in [
         ("text/csv", Some(one), points),
         ("application/x-ndjson", Some(one), points),
+        (ARROW, Some(one), points),
         ("text/csv", None, points / 5),
         ("application/x-ndjson", None, points / 5),
+        (ARROW, None, points / 5),
     ] {
         let run = runtime.block_on(stream(&server, accept, n, outputs));
         println!(
