@@ -875,14 +875,7 @@ fn read_csv(bytes: &[u8]) -> (Vec<String>, Rows) {
 #[tokio::test]
 async fn arrow_rows_equal_csv_rows_bit_for_bit() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let mut sweep = json!({
-        "case": "tangential",
-        "base": maw_base(),
-        "axes": [
-            {"path": "/velocity/normal", "linspace": {"start": -3.0, "stop": 0.5, "count": 700}},
-            {"path": "/velocity/tangential", "linspace": {"start": -1.0, "stop": 5.0, "count": 100}}
-        ]
-    });
+    let mut sweep = mixed_sweep(100);
     let (status, headers, arrow) = app
         .post_accept("/v1/sweeps", "application/vnd.apache.arrow.stream", &sweep)
         .await;
@@ -934,4 +927,253 @@ async fn arrow_rows_equal_csv_rows_bit_for_bit() {
         ("60000", "70000")
     );
     assert_eq!(part_rows, arrow_rows[60_000..]);
+}
+
+/// A sweep whose points include refusals (a separating contact) and several
+/// regimes: 700 × `count` points.
+fn mixed_sweep(count: u64) -> Value {
+    json!({
+        "case": "tangential",
+        "base": maw_base(),
+        "axes": [
+            {"path": "/velocity/normal", "linspace": {"start": -3.0, "stop": 0.5, "count": 700}},
+            {"path": "/velocity/tangential", "linspace": {"start": -1.0, "stop": 5.0, "count": count}}
+        ]
+    })
+}
+
+/// The reduction equals the one computed here from the full rows: counts,
+/// refusals, extremes at their first points, the exact sum (its parts sum
+/// exactly to the rows' exact sum; the sum is that sum correctly rounded),
+/// the mean, histograms and name counts; ranges' partial reductions merge to
+/// the whole exactly.
+#[tokio::test]
+async fn a_reduction_equals_the_reduction_of_the_full_rows() {
+    use common::reference::{Q, q, to_f64};
+    let app = spawn_app(ServiceConfig::default()).await;
+    let sweep = mixed_sweep(20);
+    let table = json_table(&app, &sweep).await;
+    let columns: Vec<String> = serde_json::from_value(table["columns"].clone()).unwrap();
+    let rows = table["rows"].as_array().unwrap();
+    let mut reduced = sweep.clone();
+    reduced["reduce"] = json!({"histograms": [
+        {"output": "/energy/loss", "start": 0.0, "stop": 3.0, "bins": 7},
+        {"output": "/final_velocity/tangential", "start": -1.0, "stop": 1.0, "bins": 3}
+    ]});
+    let (status, headers, r) = app.post("/v1/sweeps", &reduced).await;
+    assert_eq!(status, StatusCode::OK, "{r}");
+    assert_eq!(headers["content-type"], "application/json");
+    assert_eq!(
+        (&r["points"], &r["total_points"]),
+        (&json!(14_000), &json!(14_000))
+    );
+
+    let errors: Vec<&Value> = rows
+        .iter()
+        .map(|row| row.as_array().unwrap().last().unwrap())
+        .collect();
+    let refused = errors.iter().filter(|e| !e.is_null()).count() as u64;
+    assert!(refused > 0);
+    assert_eq!(r["answered"], 14_000 - refused);
+    assert_eq!(r["refused"]["not-approaching"]["count"], refused);
+    assert_eq!(
+        &r["refused"]["not-approaching"]["title"],
+        *errors.iter().find(|e| !e.is_null()).unwrap()
+    );
+
+    let axes = &columns[..2];
+    let mut checked = 0;
+    for (c, name) in columns.iter().enumerate().skip(2) {
+        if name == "error" {
+            continue;
+        }
+        let summary = &r["outputs"][name];
+        let cells: Vec<(usize, &Value)> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, row)| (i, &row[c]))
+            .filter(|(_, v)| !v.is_null())
+            .collect();
+        if name == "/regime" {
+            let mut counts = std::collections::BTreeMap::new();
+            for (_, v) in &cells {
+                *counts.entry(v.as_str().unwrap().to_owned()).or_insert(0u64) += 1;
+            }
+            assert!(counts.len() >= 2, "{counts:?}");
+            assert_eq!(summary["values"], json!(counts));
+            assert_eq!(summary["count"], cells.len());
+            continue;
+        }
+        let values: Vec<(usize, f64)> = cells.iter().map(|(i, v)| (*i, v.as_f64().unwrap())).collect();
+        assert_eq!(summary["count"], values.len(), "{name}");
+        let first = |better: fn(f64, f64) -> bool| {
+            values
+                .iter()
+                .fold(None, |best: Option<(usize, f64)>, &(i, x)| match best {
+                    Some((_, b)) if !better(x, b) => best,
+                    _ => Some((i, x)),
+                })
+                .unwrap()
+        };
+        for (key, (i, x)) in [("min", first(|x, b| x < b)), ("max", first(|x, b| x > b))] {
+            assert_eq!(
+                summary[key]["value"].as_f64().unwrap().to_bits(),
+                x.to_bits(),
+                "{name} {key}"
+            );
+            assert_eq!(summary[key]["index"], i, "{name} {key}");
+            for (a, axis) in axes.iter().enumerate() {
+                assert_eq!(summary[key]["inputs"][axis], rows[i][a], "{name} {key}");
+            }
+        }
+        let exact: Q = values.iter().map(|&(_, x)| q(x)).sum();
+        let parts: Q = summary["sum_parts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| q(p.as_f64().unwrap()))
+            .sum();
+        assert_eq!(parts, exact, "{name}: the parts sum exactly to the rows' sum");
+        let sum = to_f64(&exact);
+        assert_eq!(
+            summary["sum"].as_f64().unwrap().to_bits(),
+            sum.to_bits(),
+            "{name}"
+        );
+        assert_eq!(
+            summary["mean"].as_f64().unwrap().to_bits(),
+            (sum / values.len() as f64).to_bits()
+        );
+        if let Some(h) = summary["histogram"].as_object() {
+            let (start, stop) = (h["start"].as_f64().unwrap(), h["stop"].as_f64().unwrap());
+            let bins = h["counts"].as_array().unwrap().len();
+            let mut counts = vec![0u64; bins];
+            let (mut below, mut above) = (0u64, 0u64);
+            for &(_, x) in &values {
+                if x < start {
+                    below += 1;
+                } else if x > stop {
+                    above += 1;
+                } else {
+                    let at = ((x - start) / (stop - start) * bins as f64).floor() as usize;
+                    counts[at.min(bins - 1)] += 1;
+                }
+            }
+            assert_eq!(
+                (h["below"].as_u64().unwrap(), h["above"].as_u64().unwrap()),
+                (below, above)
+            );
+            assert_eq!(h["counts"], json!(counts), "{name}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 2, "both histograms were checked");
+
+    // Ranges: partial reductions merge exactly into the whole's.
+    let mut parts = Vec::new();
+    for (start, end) in [(0, 5_000), (5_000, 12_001), (12_001, 14_000)] {
+        let mut slice = reduced.clone();
+        slice["range"] = json!({"start": start, "end": end});
+        let (status, _, part) = app.post("/v1/sweeps", &slice).await;
+        assert_eq!(status, StatusCode::OK, "{part}");
+        assert_eq!(part["sweep_sha256"], r["sweep_sha256"]);
+        parts.push(part);
+    }
+    let loss = |p: &Value| p["outputs"]["/energy/loss"].clone();
+    let count: u64 = parts.iter().map(|p| loss(p)["count"].as_u64().unwrap()).sum();
+    assert_eq!(count, loss(&r)["count"].as_u64().unwrap());
+    let merged: Q = parts
+        .iter()
+        .flat_map(|p| loss(p)["sum_parts"].as_array().unwrap().clone())
+        .map(|x| q(x.as_f64().unwrap()))
+        .sum();
+    let whole: Q = loss(&r)["sum_parts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| q(x.as_f64().unwrap()))
+        .sum();
+    assert_eq!(merged, whole);
+    let min = parts
+        .iter()
+        .map(|p| loss(p)["min"].clone())
+        .filter(|m| !m.is_null())
+        .min_by(|a, b| {
+            a["value"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["value"].as_f64().unwrap())
+        })
+        .unwrap();
+    assert_eq!(min, loss(&r)["min"]);
+}
+
+/// Reduction requests are checked whole; a reduction is JSON only.
+#[tokio::test]
+async fn bad_reductions_are_refused_naming_the_member() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    for (histogram, pointer) in [
+        (
+            json!({"output": "/nope", "start": 0, "stop": 1, "bins": 3}),
+            "/reduce/histograms/0/output",
+        ),
+        (
+            json!({"output": "/regime", "start": 0, "stop": 1, "bins": 3}),
+            "/reduce/histograms/0/output",
+        ),
+        (
+            json!({"output": "/energy/loss", "start": 1, "stop": 1, "bins": 3}),
+            "/reduce/histograms/0",
+        ),
+        (
+            json!({"output": "/energy/loss", "start": 0, "stop": 1, "bins": 0}),
+            "/reduce/histograms/0/bins",
+        ),
+        (
+            json!({"output": "/energy/loss", "start": 0, "stop": 1, "bins": 10_001}),
+            "/reduce/histograms/0/bins",
+        ),
+    ] {
+        let mut sweep = mixed_sweep(100);
+        sweep["reduce"] = json!({"histograms": [histogram]});
+        let (status, _, problem) = app.post("/v1/sweeps", &sweep).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+        assert_eq!(problem["pointer"], pointer, "{problem}");
+    }
+    let mut sweep = mixed_sweep(100);
+    sweep["reduce"] = json!({});
+    let (status, _, _) = app.post_accept("/v1/sweeps", "text/csv", &sweep).await;
+    assert_eq!(status, StatusCode::NOT_ACCEPTABLE);
+}
+
+/// A client that goes away mid-reduction stops the work.
+#[tokio::test]
+async fn a_client_that_disconnects_stops_the_reduction() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 10_000_000}}],
+        "reduce": {}
+    });
+    let client = reqwest::Client::builder()
+        .timeout(Duration::from_millis(300))
+        .build()
+        .unwrap();
+    let sent = tokio::spawn(client.post(format!("{}/v1/sweeps", app.base)).json(&body).send());
+    let started = Instant::now();
+    while app.streams.active() == 0 && started.elapsed() < Duration::from_secs(5) {
+        tokio::task::yield_now().await;
+    }
+    assert!(app.streams.active() > 0, "the reduction started");
+    assert!(sent.await.unwrap().is_err(), "the client gave up first");
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while app.streams.active() > 0 {
+        assert!(
+            Instant::now() < deadline,
+            "the reduction went on after the client left"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    let table = json_table(&app, &two_axis_sweep()).await;
+    assert_eq!(table["points"], 183);
 }

@@ -10,6 +10,7 @@
 //! and reuses its buffers: no allocation per point.
 
 mod grid;
+pub mod reduce;
 
 use std::ops::Range;
 

@@ -13,6 +13,7 @@ mod encode;
 mod negotiate;
 mod plan;
 mod plot;
+mod reduce;
 mod request;
 mod stream;
 
@@ -31,6 +32,10 @@ use self::arrow::{ArrowLayout, ArrowSink};
 use self::encode::{RowWriter, table};
 pub use self::negotiate::{Format, negotiate};
 pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
+pub use self::reduce::{
+    ExtremeDto, HistogramCounts, HistogramDto, MAX_BINS, NameSummary, NumberSummary, OutputSummary,
+    ReduceDto, RefusedDto, SweepReduction, reduce_blocking,
+};
 pub use self::request::{AxisDto, CaseDto, CombineDto, RangeDto, SliceDto, SweepRequest, SweepTable};
 pub use self::stream::Streams;
 use self::stream::stream;
@@ -73,12 +78,13 @@ pub fn router() -> OpenApiRouter {
             ("x-sweep-range" = String, description = "The answer's points as `start-end` (end excluded)"),
          ),
          content(
-            (SweepTable = "application/json"),
+            (SweepJson = "application/json"),
             (String = "application/x-ndjson"),
             (String = "text/csv"),
             (String = "image/svg+xml"),
             (Vec<u8> = "application/vnd.apache.arrow.stream"),
         )),
+
         (status = 406, description = "None of application/json, application/x-ndjson, text/csv, application/vnd.apache.arrow.stream, image/svg+xml is acceptable",
          body = Problem, content_type = "application/problem+json"),
         Problems
@@ -91,7 +97,15 @@ pub async fn sweeps(
     ApiJson(request): ApiJson<SweepRequest>,
 ) -> Result<Response, ApiError> {
     let format = negotiate(&headers)?;
-    let limit = if format.is_buffered() {
+    if request.reduce.is_some() && format != Format::Json {
+        return Err(ApiError::new(
+            StatusCode::NOT_ACCEPTABLE,
+            "not-acceptable",
+            "Not acceptable",
+            "a reduced sweep is answered as application/json",
+        ));
+    }
+    let limit = if format.is_buffered() && request.reduce.is_none() {
         config.max_buffered_sweep_points
     } else {
         config.max_sweep_points
@@ -105,6 +119,16 @@ pub async fn sweeps(
         request: &request,
     };
     on_sweep!(sweep, s => respond(s, answer, &streams).await)
+}
+
+/// The JSON answers of a sweep: its table, or with `reduce` its summary.
+#[derive(Debug, serde::Serialize, utoipa::ToSchema)]
+#[serde(untagged)]
+pub enum SweepJson {
+    /// Every row.
+    Table(SweepTable),
+    /// The summary asked for by `reduce`.
+    Reduction(SweepReduction),
 }
 
 /// A checked sweep of any case.
@@ -247,6 +271,21 @@ async fn respond<C: Case>(
         names,
         first: range.start,
     };
+    if let Some(reduce) = &request.reduce {
+        let columns = sweep.case().columns().to_vec();
+        let bins = reduce::bins(reduce, &columns)?;
+        let names: Vec<bool> = columns.iter().map(|o| o.is_name()).collect();
+        let sweep = Arc::new(sweep);
+        let reduction = reduce::reduce(sweep.clone(), bins, names, streams)
+            .await
+            .ok_or_else(internal)?;
+        let dto = reduce::to_dto(reduction, &sweep, &axis_names, &columns, precision, request);
+        let mut response = axum::Json(dto).into_response();
+        response
+            .headers_mut()
+            .insert("x-sweep-points", HeaderValue::from(points));
+        return Ok(response);
+    }
     let body = match format {
         Format::Svg => {
             let plot = plot::Plot::check(&axis_names, &outputs, &sweep)?;

@@ -118,6 +118,12 @@ pub struct SweepRequest {
     /// to the range, so a grid larger than the limit is computed in slices;
     /// `POST /v1/sweeps/plan` gives the ranges.
     pub range: Option<SliceDto>,
+    /// Answer a summary instead of rows (`application/json`): per output the
+    /// count, minimum and maximum with their points, exact sum and mean,
+    /// optional histograms; names counted; refused points counted by problem.
+    /// Computed in one pass with bounded memory, so the streamed point limit
+    /// applies.
+    pub reduce: Option<super::reduce::ReduceDto>,
 }
 
 /// A sweep as one JSON table. Columns are the axis paths, the output pointers and

@@ -17,7 +17,7 @@ use crate::sweep::{Sweep, SweepCase};
 /// Chunks queued between the workers and the socket.
 const QUEUED_CHUNKS: usize = 4;
 
-/// How many streamed sweeps of one application are still computing (part of
+/// How many streamed or reduced sweeps of one application are still computing (part of
 /// the application's state; for tests and diagnostics).
 #[derive(Debug, Clone, Default)]
 pub struct Streams(Arc<AtomicUsize>);
@@ -28,14 +28,14 @@ impl Streams {
         self.0.load(Ordering::Acquire)
     }
 
-    fn start(&self) -> ActiveStream {
+    pub(super) fn start(&self) -> ActiveStream {
         self.0.fetch_add(1, Ordering::AcqRel);
         ActiveStream(self.0.clone())
     }
 }
 
 /// Counts a producer as active while it lives.
-struct ActiveStream(Arc<AtomicUsize>);
+pub(super) struct ActiveStream(Arc<AtomicUsize>);
 
 impl Drop for ActiveStream {
     fn drop(&mut self) {
