@@ -4,6 +4,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use restitution::http::config::{Cli, Command};
+use restitution::http::offline::{self, OfflineError, Shard};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
 fn main() -> ExitCode {
@@ -15,6 +16,17 @@ fn main() -> ExitCode {
         }
         Some(Command::Healthcheck { addr }) => run(healthcheck(addr)),
         Some(Command::Serve(config)) => run(serve(config)),
+        Some(Command::Solve { case }) => run(solve(case)),
+        Some(Command::Sweep {
+            request,
+            output,
+            format,
+            shards,
+            index,
+        }) => {
+            let shard = shards.zip(index).map(|(shards, index)| Shard { shards, index });
+            run(sweep(request, output, format, shard))
+        }
         None => run(serve(cli.serve)),
     }
 }
@@ -78,5 +90,56 @@ async fn healthcheck(addr: std::net::SocketAddr) -> ExitCode {
     match tokio::time::timeout(std::time::Duration::from_secs(3), attempt).await {
         Ok(Ok(true)) => ExitCode::SUCCESS,
         _ => ExitCode::FAILURE,
+    }
+}
+
+async fn solve(case: String) -> ExitCode {
+    let stdin = std::io::stdin().lock();
+    let stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    match offline::solve(&case, stdin, stdout).await {
+        Ok(0) => ExitCode::SUCCESS,
+        Ok(_) => ExitCode::from(1),
+        Err(error) => {
+            eprintln!("restitution solve: {error}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+async fn sweep(
+    request: std::path::PathBuf,
+    output: Option<std::path::PathBuf>,
+    format: Option<String>,
+    shard: Option<Shard>,
+) -> ExitCode {
+    let format = format
+        .or_else(|| {
+            output
+                .as_ref()
+                .and_then(|o| o.extension())
+                .map(|e| e.to_string_lossy().into_owned())
+        })
+        .unwrap_or_else(|| "csv".to_owned());
+    let Some(accept) = offline::accept_for(&format) else {
+        eprintln!("restitution sweep: unknown format {format:?}: csv, ndjson, arrow, json or svg");
+        return ExitCode::from(2);
+    };
+    let result = match &output {
+        Some(path) => match std::fs::File::create(path) {
+            Ok(file) => offline::sweep(&request, shard, accept, std::io::BufWriter::new(file)).await,
+            Err(error) => Err(OfflineError::Io(error)),
+        },
+        None => offline::sweep(&request, shard, accept, std::io::stdout().lock()).await,
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("restitution sweep: {error}");
+            ExitCode::from(if matches!(error, OfflineError::Refused(_)) {
+                1
+            } else {
+                2
+            })
+        }
     }
 }

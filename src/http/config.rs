@@ -31,6 +31,34 @@ pub enum Command {
         #[arg(long, env = "RESTITUTION_HEALTHCHECK_ADDR", default_value = "127.0.0.1:8080")]
         addr: SocketAddr,
     },
+    /// Answer impact requests from standard input without a server: one JSON
+    /// request per line (or one document), one answer or problem+json per line
+    /// on standard output; exits 1 when any request was refused.
+    Solve {
+        /// The case: normal, oblique, tangential, torsional, planar or spatial.
+        #[arg(value_parser = ["normal", "oblique", "tangential", "torsional", "planar", "spatial"])]
+        case: String,
+    },
+    /// Compute a sweep (or one shard of it) without a server, as `POST /v1/sweeps` would.
+    Sweep {
+        /// A file holding the sweep request (the body of `POST /v1/sweeps`).
+        #[arg(long)]
+        request: PathBuf,
+        /// Where to write (default: standard output).
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// csv, ndjson, arrow, json or svg (default: from the output's extension, else csv;
+        /// a request with "reduce" is answered as json).
+        #[arg(long)]
+        format: Option<String>,
+        /// Split the sweep into this many ranges (as POST /v1/sweeps/plan does) ...
+        #[arg(long, requires = "index")]
+        shards: Option<u64>,
+        /// ... and compute the one with this index (0-based; a Kubernetes Indexed Job's
+        /// JOB_COMPLETION_INDEX).
+        #[arg(long, requires = "shards")]
+        index: Option<u64>,
+    },
 }
 
 /// Settings of the HTTP service.

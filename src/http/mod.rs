@@ -10,6 +10,7 @@ pub mod dto;
 pub mod extract;
 pub mod fits;
 pub mod impacts;
+pub mod offline;
 pub mod planar;
 pub mod problem;
 pub mod spatial;
