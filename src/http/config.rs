@@ -92,6 +92,10 @@ pub struct ServiceConfig {
     /// A connection must send a request's complete headers within this many milliseconds.
     #[arg(long, env = "RESTITUTION_HEADER_READ_TIMEOUT_MS", default_value_t = 5_000)]
     pub header_read_timeout_ms: u64,
+    /// After SIGTERM or SIGINT, keep serving with `/readyz` answering 503 for this many
+    /// milliseconds before the listener closes (let a load balancer see it first).
+    #[arg(long, env = "RESTITUTION_SHUTDOWN_DRAIN_MS", default_value_t = 0)]
+    pub shutdown_drain_ms: u64,
     /// After SIGTERM or SIGINT, in-flight requests may finish for this many milliseconds.
     #[arg(long, env = "RESTITUTION_SHUTDOWN_GRACE_MS", default_value_t = 10_000)]
     pub shutdown_grace_ms: u64,
@@ -140,6 +144,7 @@ impl Default for ServiceConfig {
             max_buffered_sweep_points: 200_000,
             sweep_stall_timeout_ms: 30_000,
             header_read_timeout_ms: 5_000,
+            shutdown_drain_ms: 0,
             shutdown_grace_ms: 10_000,
             api_key_file: None,
             cors_allow_origins: Vec::new(),

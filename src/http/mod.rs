@@ -15,6 +15,7 @@ pub mod planar;
 pub mod problem;
 pub mod spatial;
 pub mod sweeps;
+pub mod telemetry;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -80,7 +81,7 @@ impl utoipa::Modify for BearerRequired {
                 ),
             );
         for (path, item) in doc.paths.paths.iter_mut() {
-            if path == HEALTHZ {
+            if OPEN_ROUTES.contains(&path.as_str()) {
                 continue;
             }
             for operation in operations_mut(item) {
@@ -109,8 +110,11 @@ fn operations_mut(
     .filter_map(Option::as_mut)
 }
 
-/// The liveness route, open even when the service has an API key.
+/// The liveness route.
 const HEALTHZ: &str = "/healthz";
+/// The routes open even when the service has an API key: the probes and the
+/// metrics scrape (which carry no key).
+const OPEN_ROUTES: [&str; 3] = [HEALTHZ, "/readyz", "/metrics"];
 
 /// Liveness answer.
 #[derive(Serialize, ToSchema)]
@@ -131,6 +135,8 @@ fn routes() -> OpenApiRouter {
         .merge(sweeps::router())
         .merge(fits::router())
         .routes(routes!(healthz))
+        .routes(routes!(telemetry::readyz))
+        .routes(routes!(telemetry::metrics))
 }
 
 /// The OpenAPI 3.1 document generated from the code, for a service without
@@ -171,6 +177,8 @@ pub fn app(config: &ServiceConfig) -> Router {
 pub struct AppState {
     /// Streamed sweeps still computing.
     pub streams: sweeps::Streams,
+    /// Readiness and metrics.
+    pub telemetry: telemetry::Telemetry,
 }
 
 /// The application with the given state (tests keep a handle on it).
@@ -179,7 +187,8 @@ pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let router = router
         .layer(axum::Extension(state.streams))
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)));
-    with_middleware(router, config)
+    // Outermost, so that every layer (the metrics middleware, the shedding answer) sees it.
+    with_middleware(router, config).layer(axum::Extension(state.telemetry))
 }
 
 /// Wraps `router` in the service's middleware and fallbacks (request ids,
@@ -207,10 +216,16 @@ pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
                     HeaderValue::from_static("nosniff"),
                 ))
                 .layer(middleware::from_fn(access_log))
+                .layer(middleware::from_fn(telemetry::record))
                 .layer(CatchPanicLayer::custom(panic_response))
                 .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
                 .load_shed()
-                .concurrency_limit(config.concurrency_limit),
+                // One semaphore for every route: `Router::layer` applies the
+                // stack to each route, and a plain concurrency limit would
+                // give each route its own.
+                .layer(tower::limit::GlobalConcurrencyLimitLayer::new(
+                    config.concurrency_limit,
+                )),
         );
     let router = match &config.api_key {
         Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
@@ -245,9 +260,9 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
     )
 }
 
-/// Refuses every request but `GET /healthz` without `Authorization: Bearer <key>` (401).
+/// Refuses every request but the probes and metrics without `Authorization: Bearer <key>` (401).
 async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    if request.uri().path() == HEALTHZ {
+    if OPEN_ROUTES.contains(&request.uri().path()) {
         return next.run(request).await;
     }
     let token = request
@@ -285,14 +300,17 @@ fn same_secret(given: &[u8], key: &[u8]) -> bool {
     given.len() == key.len() && given.iter().zip(key).fold(0u8, |acc, (a, b)| acc | (a ^ b)) == 0
 }
 
-async fn overloaded(_: BoxError) -> ApiError {
-    ApiError::new(
+async fn overloaded(_: BoxError) -> Response {
+    let mut response = ApiError::new(
         StatusCode::SERVICE_UNAVAILABLE,
         "overloaded",
         "Service overloaded",
         "the server is at its concurrency limit; retry shortly",
     )
     .retry_after(1)
+    .into_response();
+    response.extensions_mut().insert(telemetry::Shed);
+    response
 }
 
 async fn not_found(request: Request) -> ApiError {
@@ -421,7 +439,33 @@ pub async fn serve_until(
     config: &ServiceConfig,
     signal: impl std::future::Future<Output = ()>,
 ) -> std::io::Result<()> {
-    serve_router_until(listener, app(config), config, signal).await
+    serve_app_until(listener, config, AppState::default(), signal).await
+}
+
+/// Serves the application with `state` until `signal` completes, as
+/// [`serve_until`]; on the signal, `/readyz` first answers 503 for
+/// `shutdown_drain_ms` while everything else is still served (so a load
+/// balancer stops sending before the listener closes).
+pub async fn serve_app_until(
+    listener: tokio::net::TcpListener,
+    config: &ServiceConfig,
+    state: AppState,
+    signal: impl std::future::Future<Output = ()>,
+) -> std::io::Result<()> {
+    let telemetry = state.telemetry.clone();
+    let drain = Duration::from_millis(config.shutdown_drain_ms);
+    let signal = async move {
+        signal.await;
+        telemetry.start_draining();
+        if !drain.is_zero() {
+            tracing::info!(
+                drain_ms = drain.as_millis() as u64,
+                "draining: not ready, still serving"
+            );
+            tokio::time::sleep(drain).await;
+        }
+    };
+    serve_router_until(listener, app_with(config, state), config, signal).await
 }
 
 /// Serves any router (already wrapped by [`with_middleware`]) the way the

@@ -317,6 +317,34 @@ pub(crate) trait Model<T> {
 /// everything: its undecided case is uninhabited.
 #[inline(never)]
 fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+    let (result, stage) = adaptive_stages(model, out);
+    let counter = match stage {
+        Stage::DoubleDouble => 1,
+        Stage::Rational => 2,
+        Stage::Fast | Stage::Compensated => 0,
+    };
+    SETTLED[counter].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    (result, stage)
+}
+
+/// Answers (and refusals) settled by the compensated, double-double and exact
+/// stages of the adaptive evaluation since the process started.
+static SETTLED: [std::sync::atomic::AtomicU64; 3] = [const { std::sync::atomic::AtomicU64::new(0) }; 3];
+
+/// How many impacts each stage of the adaptive (`exact`) evaluation settled
+/// since the process started, in order: compensated, double-double, exact
+/// fractions (`fast` answers that needed no escalation are not counted).
+pub fn settled_by_stage() -> [(Stage, u64); 3] {
+    let n = |i: usize| SETTLED[i].load(std::sync::atomic::Ordering::Relaxed);
+    [
+        (Stage::Compensated, n(0)),
+        (Stage::DoubleDouble, n(1)),
+        (Stage::Rational, n(2)),
+    ]
+}
+
+#[inline(always)]
+fn adaptive_stages<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     let settled = |result: Exact<Bounded, ()>| match result {
         Ok(()) => Some(Ok(())),
         Err(Fail::Refused(e)) => Some(Err(e)),

@@ -46,8 +46,10 @@ use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, Torsional
 use super::planar::PlanarContactRequest;
 use super::problem::{ApiError, Problem, Problems};
 use super::spatial::SpatialContactRequest;
+use super::telemetry::Telemetry;
 use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
 use crate::sweep::{CaseSweep, Sweep};
+use prometheus_client::metrics::counter::Counter;
 
 /// The sweep endpoints (`/v1/sweeps`, `/v1/sweeps/plan`), with their OpenAPI operations.
 pub fn router() -> OpenApiRouter {
@@ -93,6 +95,7 @@ pub fn router() -> OpenApiRouter {
 pub async fn sweeps(
     Extension(config): Extension<Arc<ServiceConfig>>,
     Extension(streams): Extension<Streams>,
+    telemetry: Option<Extension<Telemetry>>,
     headers: HeaderMap,
     ApiJson(request): ApiJson<SweepRequest>,
 ) -> Result<Response, ApiError> {
@@ -112,11 +115,13 @@ pub async fn sweeps(
     };
     let stall = Duration::from_millis(config.sweep_stall_timeout_ms);
     let (sweep, precision) = build(&request, limit, format)?;
+    let computed = telemetry.map(|Extension(t)| t.sweep_counter(request.case.as_str(), precision.as_str()));
     let answer = Answer {
         format,
         precision,
         stall,
         request: &request,
+        computed,
     };
     on_sweep!(sweep, s => respond(s, answer, &streams).await)
 }
@@ -224,6 +229,8 @@ struct Answer<'a> {
     precision: Precision,
     stall: Duration,
     request: &'a SweepRequest,
+    /// Counts the points computed, for the metrics.
+    computed: Option<Counter>,
 }
 
 /// The Arrow schema's metadata: what the stream is a slice of.
@@ -257,7 +264,16 @@ async fn respond<C: Case>(
         precision,
         stall,
         request,
+        computed,
     } = answer;
+    let computed = computed.unwrap_or_default();
+    // Counts a chunk's points as the workers finish computing it.
+    let counted = {
+        let computed = computed.clone();
+        move |range: &std::ops::Range<u64>| {
+            computed.inc_by(range.end - range.start);
+        }
+    };
     let axis_names: Vec<&'static str> = sweep.axes().iter().map(|a| a.param.path()).collect();
     let outputs: Vec<&'static str> = sweep.case().columns().iter().map(|o| o.path()).collect();
     let mut names = axis_names.clone();
@@ -279,6 +295,7 @@ async fn respond<C: Case>(
         let reduction = reduce::reduce(sweep.clone(), bins, names, streams)
             .await
             .ok_or_else(internal)?;
+        computed.inc_by(points);
         let dto = reduce::to_dto(reduction, &sweep, &axis_names, &columns, precision, request);
         let mut response = axum::Json(dto).into_response();
         response
@@ -293,6 +310,7 @@ async fn respond<C: Case>(
             let text = tokio::task::spawn_blocking(move || plot.render(&sweep))
                 .await
                 .map_err(|_| internal())?;
+            computed.inc_by(points);
             Body::from(text)
         }
         Format::Json => {
@@ -300,12 +318,16 @@ async fn respond<C: Case>(
             let text = tokio::task::spawn_blocking(move || table(&sweep, &writer))
                 .await
                 .map_err(|_| internal())?;
+            computed.inc_by(points);
             Body::from(text)
         }
         Format::Csv | Format::Ndjson => {
             let chunk_points = writer.chunk_points();
             let rows = writer.clone();
-            let produce = move |sweep: &Sweep<_>, range| encode::chunk(sweep, &rows, range).0;
+            let produce = move |sweep: &Sweep<_>, range| {
+                counted(&range);
+                encode::chunk(sweep, &rows, range).0
+            };
             stream(Arc::new(sweep), chunk_points, produce, writer, stall, streams)
         }
         Format::Arrow => {
@@ -313,7 +335,10 @@ async fn respond<C: Case>(
             let layout = Arc::new(ArrowLayout::new(&axis_names, sweep.case().columns(), metadata));
             let chunk_points = layout.chunk_points();
             let sink = ArrowSink::new(layout.clone());
-            let produce = move |sweep: &Sweep<_>, range| layout.chunk(sweep, range);
+            let produce = move |sweep: &Sweep<_>, range| {
+                counted(&range);
+                layout.chunk(sweep, range)
+            };
             stream(Arc::new(sweep), chunk_points, produce, sink, stall, streams)
         }
     };

@@ -30,6 +30,20 @@ pub enum CaseDto {
     Spatial,
 }
 
+impl CaseDto {
+    /// The case's name on the wire.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CaseDto::Normal => "normal",
+            CaseDto::Oblique => "oblique",
+            CaseDto::Tangential => "tangential",
+            CaseDto::Torsional => "torsional",
+            CaseDto::Planar => "planar",
+            CaseDto::Spatial => "spatial",
+        }
+    }
+}
+
 /// How axes combine into points.
 #[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
