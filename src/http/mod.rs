@@ -129,13 +129,22 @@ async fn healthz() -> Json<Health> {
     Json(Health { status: "ok" })
 }
 
-fn routes() -> OpenApiRouter {
+/// The routes behind the middleware stack (load shedding included).
+fn served_routes() -> OpenApiRouter {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(impacts::router())
         .merge(sweeps::router())
         .merge(fits::router())
-        .routes(routes!(healthz))
         .routes(routes!(telemetry::readyz))
+}
+
+/// Every route, for the document: the served ones, and the liveness probe and
+/// metrics, which the application serves outside the stack so that a
+/// saturated service still answers them (a shed liveness probe would have
+/// the orchestrator restart the busiest replicas).
+fn routes() -> OpenApiRouter {
+    served_routes()
+        .routes(routes!(healthz))
         .routes(routes!(telemetry::metrics))
 }
 
@@ -183,12 +192,16 @@ pub struct AppState {
 
 /// The application with the given state (tests keep a handle on it).
 pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
-    let (router, _) = routes().split_for_parts();
+    let (router, _) = served_routes().split_for_parts();
     let router = router
         .layer(axum::Extension(state.streams))
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)));
-    // Outermost, so that every layer (the metrics middleware, the shedding answer) sees it.
-    with_middleware(router, config).layer(axum::Extension(state.telemetry))
+    // The probes outside the stack; the telemetry outermost, so that every
+    // layer (the metrics middleware, the shedding answer) sees it.
+    with_middleware(router, config)
+        .route(HEALTHZ, axum::routing::get(healthz))
+        .route("/metrics", axum::routing::get(telemetry::metrics))
+        .layer(axum::Extension(state.telemetry))
 }
 
 /// Wraps `router` in the service's middleware and fallbacks (request ids,
