@@ -12,6 +12,7 @@
 //! cargo bench --bench load -- --smoke         # CI: 0.5 s per cell, concurrency 1 and 16
 //! cargo bench --bench load -- --soak SECONDS  # mixed traffic, resident memory over time
 //! cargo bench --bench load -- --precision     # the service with "precision": "fast" against "exact"
+//! cargo bench --bench load -- --metrics       # the service with request metrics on against off
 //! ```
 //! Every run is bounded in requests and seconds and targets loopback only.
 
@@ -72,6 +73,10 @@ fn main() {
         return;
     }
     let smoke = args.iter().any(|a| a == "--smoke");
+    if args.iter().any(|a| a == "--metrics") {
+        compare_metrics(smoke);
+        return;
+    }
     if args.iter().any(|a| a == "--precision") {
         compare_precision(smoke);
         return;
@@ -179,8 +184,13 @@ fn spawn(program: &std::path::Path, args: &[String], port: u16) -> Server {
 }
 
 fn product() -> Server {
+    product_with(&[])
+}
+
+fn product_with(extra: &[&str]) -> Server {
     let port = free_port();
-    let args = vec!["--bind".to_owned(), format!("127.0.0.1:{port}")];
+    let mut args = vec!["--bind".to_owned(), format!("127.0.0.1:{port}")];
+    args.extend(extra.iter().map(|a| (*a).to_owned()));
     spawn(
         std::path::Path::new(env!("CARGO_BIN_EXE_restitution")),
         &args,
@@ -387,6 +397,52 @@ fn compare(smoke: bool) {
                 b.rps(),
                 s.rps(),
                 s.rps() / b.rps(),
+            );
+        }
+    }
+    assert_eq!(failures, 0, "every request answered 200");
+}
+
+/// The service with per-request metrics recorded against the same service
+/// with the recording off, alternating per cell: what `/metrics` costs.
+fn compare_metrics(smoke: bool) {
+    let (levels, duration, max, rounds): (&[usize], _, _, _) = if smoke {
+        (&[16], Duration::from_millis(500), 50_000, 1)
+    } else {
+        (&[1, 16], Duration::from_secs(3), 500_000, 3)
+    };
+    let runtime = client_runtime();
+    let off = product_with(&["--metrics", "false"]);
+    let on = product();
+    println!("| endpoint | concurrency | metrics off req/s | metrics on req/s | on/off |");
+    println!("|---|---:|---:|---:|---:|");
+    let mut failures = 0;
+    for (path, body) in ENDPOINTS {
+        for &c in levels {
+            let bodies = vec![(path, "application/json", Bytes::from_static(body.as_bytes()))];
+            for server in [&off, &on] {
+                drive(
+                    &runtime,
+                    server.addr,
+                    bodies.clone(),
+                    c,
+                    Duration::from_millis(100),
+                    10_000,
+                );
+            }
+            let (mut total_off, mut total_on) = (0.0, 0.0);
+            for _ in 0..rounds {
+                let a = drive(&runtime, off.addr, bodies.clone(), c, duration, max);
+                let b = drive(&runtime, on.addr, bodies.clone(), c, duration, max);
+                failures += a.failures + b.failures;
+                total_off += a.rps();
+                total_on += b.rps();
+            }
+            println!(
+                "| {path} | {c} | {:.0} | {:.0} | {:.3} |",
+                total_off / rounds as f64,
+                total_on / rounds as f64,
+                total_on / total_off
             );
         }
     }

@@ -99,6 +99,10 @@ pub struct ServiceConfig {
     /// After SIGTERM or SIGINT, in-flight requests may finish for this many milliseconds.
     #[arg(long, env = "RESTITUTION_SHUTDOWN_GRACE_MS", default_value_t = 10_000)]
     pub shutdown_grace_ms: u64,
+    /// Record request metrics for `/metrics` (`--metrics false` to turn the
+    /// per-request recording off; sweep and exact-stage counts stay).
+    #[arg(long, env = "RESTITUTION_METRICS", default_value_t = true, action = clap::ArgAction::Set)]
+    pub metrics: bool,
     /// A file holding a bearer token; when given, every route but /healthz needs
     /// `Authorization: Bearer <token>`.
     #[arg(long, env = "RESTITUTION_API_KEY_FILE")]
@@ -145,6 +149,7 @@ impl Default for ServiceConfig {
             sweep_stall_timeout_ms: 30_000,
             header_read_timeout_ms: 5_000,
             shutdown_drain_ms: 0,
+            metrics: true,
             shutdown_grace_ms: 10_000,
             api_key_file: None,
             cors_allow_origins: Vec::new(),

@@ -196,6 +196,7 @@ pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let router = router
         .layer(axum::Extension(state.streams))
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)));
+    state.telemetry.set_recording(config.metrics);
     // The probes outside the stack; the telemetry outermost, so that every
     // layer (the metrics middleware, the shedding answer) sees it.
     with_middleware(router, config)

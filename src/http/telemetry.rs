@@ -74,6 +74,8 @@ struct Inner {
     /// Milliseconds since `started` of the last shed request (0: none).
     last_shed_ms: AtomicU64,
     draining: AtomicBool,
+    /// Whether requests are recorded (`--metrics`).
+    recording: AtomicBool,
 }
 
 /// How long after a shed request the service reports not ready, in milliseconds.
@@ -125,11 +127,17 @@ impl Default for Telemetry {
             started: Instant::now(),
             last_shed_ms: AtomicU64::new(0),
             draining: AtomicBool::new(false),
+            recording: AtomicBool::new(true),
         }))
     }
 }
 
 impl Telemetry {
+    /// Turns the per-request recording on or off.
+    pub fn set_recording(&self, on: bool) {
+        self.0.recording.store(on, Ordering::Relaxed);
+    }
+
     /// Marks the service as draining: `/readyz` answers 503 from now on.
     pub fn start_draining(&self) {
         self.0.draining.store(true, Ordering::Release);
@@ -201,7 +209,12 @@ impl Telemetry {
 /// and (for a shed one) the shedding time. Does nothing for a router without
 /// telemetry (the load test's baseline).
 pub(crate) async fn record(request: Request, next: Next) -> Response {
-    let Some(telemetry) = request.extensions().get::<Telemetry>().cloned() else {
+    let Some(telemetry) = request
+        .extensions()
+        .get::<Telemetry>()
+        .filter(|t| t.0.recording.load(Ordering::Relaxed))
+        .cloned()
+    else {
         return next.run(request).await;
     };
     let route = request

@@ -184,9 +184,9 @@ pub enum GridError {
     },
 }
 
-/// Splits `points` into `shards` consecutive ranges that tile `[0, points)`,
-/// their lengths differing by at most one (the first `points mod shards` are
-/// the longer). With more shards than points, the last ranges are empty.
+/// The `index`-th of `shards` consecutive ranges that tile `[0, points)`:
+/// `[⌊points·index/shards⌋, ⌊points·(index + 1)/shards⌋)`, so lengths differ
+/// by at most one. With more shards than points, some ranges are empty.
 pub fn shard(points: u64, shards: u64, index: u64) -> std::ops::Range<u64> {
     debug_assert!(shards > 0 && index < shards);
     let at = |i: u64| (u128::from(points) * u128::from(i) / u128::from(shards)) as u64;

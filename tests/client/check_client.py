@@ -19,7 +19,7 @@ from restitution_client.api.impacts import (
 )
 from restitution_client.api.fits import fits_planar, fits_tangential, fits_torsional
 from restitution_client.api.service import healthz
-from restitution_client.api.sweeps import sweeps
+from restitution_client.api.sweeps import plan, sweeps
 from restitution_client.models import (
     NormalRequest,
     ObliqueRequest,
@@ -28,6 +28,9 @@ from restitution_client.models import (
     PlanarFitResponse,
     PlanarContactResponse,
     PlanarResponse,
+    PlanRequest,
+    SweepPlan,
+    SweepReduction,
     SpatialContactRequest,
     SpatialContactResponse,
     Problem,
@@ -176,6 +179,26 @@ def main(base):
     table = json.loads(response.content)
     check("sweep", response.status_code == 200 and table["points"] == 3
           and close(table["rows"][0][1], -0.034) and table["rows"][2][2] == "sliding", repr(table))
+
+    # The plan of a larger sweep, one of its ranges, and its reduction, parsed as typed models.
+    grid = {
+        "case": "tangential",
+        "base": maw(0.0, friction=0.123, tangential_restitution=0.34),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": -1.0, "stop": 5.0, "count": 1000}}],
+        "outputs": ["/energy/loss", "/regime"],
+    }
+    layout = plan.sync(client=client, body=PlanRequest.from_dict({"sweep": grid, "shards": 3}))
+    check("plan", isinstance(layout, SweepPlan) and layout.points == 1000 and len(layout.ranges) == 3
+          and layout.ranges[1].start == 333 and layout.ranges[2].end == 1000, repr(layout))
+    part = sweeps.sync_detailed(client=client, body=SweepRequest.from_dict(
+        dict(grid, range=layout.ranges[1].to_dict())))
+    check("range", part.status_code == 200 and json.loads(part.content)["points"] == 333, repr(part.content[:200]))
+    reduced = sweeps.sync(client=client, body=SweepRequest.from_dict(dict(grid, reduce={"histograms": [
+        {"output": "/energy/loss", "start": 0.0, "stop": 2.0, "bins": 4}]})))
+    loss = reduced.outputs.additional_properties["/energy/loss"] if isinstance(reduced, SweepReduction) else None
+    check("reduction", isinstance(reduced, SweepReduction) and reduced.points == 1000 and loss is not None
+          and sum(loss.histogram.counts) + loss.histogram.below + loss.histogram.above == loss.count,
+          repr(reduced))
 
     # Fit: coefficients back from observations the service itself computed.
     observations = []
