@@ -1177,3 +1177,58 @@ async fn a_client_that_disconnects_stops_the_reduction() {
     let table = json_table(&app, &two_axis_sweep()).await;
     assert_eq!(table["points"], 183);
 }
+
+/// A client that leaves an Arrow stream part way stops the work, as for CSV.
+#[tokio::test]
+async fn a_client_that_disconnects_stops_the_arrow_stream() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 10_000_000}}]
+    });
+    let mut response = app
+        .client
+        .post(format!("{}/v1/sweeps", app.base))
+        .header("accept", "application/vnd.apache.arrow.stream")
+        .json(&body)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::OK);
+    response.chunk().await.unwrap().expect("the schema message");
+    assert!(app.streams.active() > 0);
+    drop(response);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while app.streams.active() > 0 {
+        assert!(
+            Instant::now() < deadline,
+            "the stream went on after the client left"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+/// A reduction that outlasts the request deadline is answered 408 and stops.
+#[tokio::test]
+async fn a_reduction_past_the_request_deadline_is_408_and_stops() {
+    let app = spawn_app(ServiceConfig {
+        request_timeout_ms: 200,
+        ..ServiceConfig::default()
+    })
+    .await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/velocity/tangential", "linspace": {"start": 0.0, "stop": 5.0, "count": 10_000_000}}],
+        "reduce": {}
+    });
+    let (status, _, problem) = app.post("/v1/sweeps", &body).await;
+    assert_eq!(status, StatusCode::REQUEST_TIMEOUT, "{problem}");
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while app.streams.active() > 0 {
+        assert!(
+            Instant::now() < deadline,
+            "the reduction went on after the deadline"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
