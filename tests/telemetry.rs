@@ -192,41 +192,22 @@ async fn readiness_turns_503_while_shedding_load() {
     let (status, _, _) = app.post("/v1/impacts/oblique", &oblique("fast")).await;
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE, "shed at the limit");
     // Liveness and metrics are answered by a saturated service.
-    let health = app
-        .client
-        .get(format!("{}/healthz", app.base))
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(health.status(), StatusCode::OK);
+    assert_eq!(app.get("/healthz").await.0, StatusCode::OK);
     assert!(metrics(&app).await["restitution_http_requests_in_flight"] >= 1.0);
     held.abort();
-    while app.streams.active() > 0 {
-        tokio::time::sleep(Duration::from_millis(5)).await;
-    }
-    let readiness = app
-        .client
-        .get(format!("{}/readyz", app.base))
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(readiness.status(), StatusCode::SERVICE_UNAVAILABLE);
+    app.until_sweeps_stop().await;
+    let (status, readiness) = app.get("/readyz").await;
     assert_eq!(
-        readiness.json::<serde_json::Value>().await.unwrap()["status"],
-        "shedding"
+        (status, &readiness["status"]),
+        (StatusCode::SERVICE_UNAVAILABLE, &json!("shedding"))
     );
     let m = metrics(&app).await;
     assert!(m["restitution_http_requests_shed_total"] >= 1.0);
     tokio::time::sleep(Duration::from_millis(1_100)).await;
-    let readiness = app
-        .client
-        .get(format!("{}/readyz", app.base))
-        .send()
-        .await
-        .unwrap();
+    let (status, readiness) = app.get("/readyz").await;
     assert_eq!(
-        readiness.status(),
-        StatusCode::OK,
+        (status, &readiness["status"]),
+        (StatusCode::OK, &json!("ready")),
         "ready again a second after the last shed request"
     );
 }

@@ -32,6 +32,30 @@ pub async fn spawn_app(config: ServiceConfig) -> TestApp {
 }
 
 impl TestApp {
+    /// GETs `path`; returns the status and the body as JSON (`Null` if it is not JSON).
+    pub async fn get(&self, path: &str) -> (StatusCode, Value) {
+        let response = self
+            .client
+            .get(format!("{}{path}", self.base))
+            .send()
+            .await
+            .expect("send");
+        let status = response.status();
+        (status, response.json().await.unwrap_or(Value::Null))
+    }
+
+    /// Waits until no streamed or reduced sweep is computing, failing after ten seconds.
+    pub async fn until_sweeps_stop(&self) {
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+        while self.streams.active() > 0 {
+            assert!(
+                std::time::Instant::now() < deadline,
+                "a sweep went on after its client left"
+            );
+            tokio::time::sleep(std::time::Duration::from_millis(5)).await;
+        }
+    }
+
     pub async fn post(&self, path: &str, body: &Value) -> (StatusCode, reqwest::header::HeaderMap, Value) {
         let response = self
             .client
