@@ -64,7 +64,12 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if let Some(i) = args.iter().position(|a| a == "--serve-baseline") {
         let port: u16 = args[i + 1].parse().expect("a port");
-        serve_baseline(port);
+        serve_baseline(port, true);
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--serve-bare") {
+        let port: u16 = args[i + 1].parse().expect("a port");
+        serve_baseline(port, false);
         return;
     }
     if let Some(i) = args.iter().position(|a| a == "--soak") {
@@ -204,16 +209,27 @@ fn baseline() -> Server {
     spawn(&me, &["--serve-baseline".to_owned(), port.to_string()], port)
 }
 
-/// The baseline: the same DTOs in, same-sized responses out, no physics.
-fn serve_baseline(port: u16) {
+/// The bare baseline: the same handlers on plain `axum::serve`, no middleware, no log.
+fn bare() -> Server {
+    let port = free_port();
+    let me = std::env::current_exe().expect("this harness");
+    spawn(&me, &["--serve-bare".to_owned(), port.to_string()], port)
+}
+
+/// The baseline: the same DTOs in, same-sized responses out, no physics;
+/// through the service's middleware and connection loop, or bare (plain
+/// `axum::serve`, no middleware, no log).
+fn serve_baseline(port: u16, middleware: bool) {
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
         .unwrap();
     runtime.block_on(async move {
-        tracing_subscriber::fmt()
-            .with_env_filter(tracing_subscriber::EnvFilter::new("info"))
-            .init();
+        if middleware {
+            tracing_subscriber::fmt()
+                .with_env_filter(tracing_subscriber::EnvFilter::new("info"))
+                .init();
+        }
         use restitution::http::impacts as i;
         let normal = i::respond_normal(parse(NORMAL.as_bytes()).unwrap()).unwrap();
         let oblique = i::respond_oblique(parse(OBLIQUE.as_bytes()).unwrap()).unwrap();
@@ -238,6 +254,10 @@ fn serve_baseline(port: u16) {
             );
         let config = ServiceConfig::default();
         let listener = tokio::net::TcpListener::bind(("127.0.0.1", port)).await.unwrap();
+        if !middleware {
+            axum::serve(listener, router).await.unwrap();
+            return;
+        }
         serve_router_until(
             listener,
             with_middleware(router, &config),
@@ -362,41 +382,39 @@ fn compare(smoke: bool) {
     };
     let runtime = client_runtime();
     let base = baseline();
+    let bare = bare();
     let service = product();
     println!(
-        "| endpoint | concurrency | baseline req/s | service req/s | ratio | service p50 ms | service p99 ms | baseline p99 ms |"
+        "| endpoint | concurrency | bare req/s | baseline req/s | service req/s | service/baseline | service/bare | service p50 ms | service p99 ms | baseline p99 ms |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut failures = 0;
     for (path, body) in ENDPOINTS {
         for &c in levels {
             let bodies = vec![(path, "application/json", Bytes::from_static(body.as_bytes()))];
-            // Warm both, then measure each.
-            drive(
-                &runtime,
-                base.addr,
-                bodies.clone(),
-                c,
-                Duration::from_millis(100),
-                10_000,
-            );
-            drive(
-                &runtime,
-                service.addr,
-                bodies.clone(),
-                c,
-                Duration::from_millis(100),
-                10_000,
-            );
+            // Warm each, then measure each in turn.
+            for server in [&bare, &base, &service] {
+                drive(
+                    &runtime,
+                    server.addr,
+                    bodies.clone(),
+                    c,
+                    Duration::from_millis(100),
+                    10_000,
+                );
+            }
+            let r = drive(&runtime, bare.addr, bodies.clone(), c, duration, max);
             let mut b = drive(&runtime, base.addr, bodies.clone(), c, duration, max);
             let mut s = drive(&runtime, service.addr, bodies, c, duration, max);
-            failures += b.failures + s.failures;
+            failures += r.failures + b.failures + s.failures;
             let (p50, p99, b99) = (s.percentile(0.5), s.percentile(0.99), b.percentile(0.99));
             println!(
-                "| {path} | {c} | {:.0} | {:.0} | {:.2} | {p50:.3} | {p99:.3} | {b99:.3} |",
+                "| {path} | {c} | {:.0} | {:.0} | {:.0} | {:.2} | {:.2} | {p50:.3} | {p99:.3} | {b99:.3} |",
+                r.rps(),
                 b.rps(),
                 s.rps(),
                 s.rps() / b.rps(),
+                s.rps() / r.rps(),
             );
         }
     }

@@ -47,8 +47,15 @@ fn runtime() -> tokio::runtime::Runtime {
 }
 
 async fn serve(mut config: restitution::http::ServiceConfig) -> ExitCode {
+    // Log lines are formatted on the request's thread and written by a
+    // dedicated thread: no write system call on the request path. Not lossy:
+    // when its queue is full a request waits rather than lose its line.
+    let (writer, _flush_on_exit) = tracing_appender::non_blocking::NonBlockingBuilder::default()
+        .lossy(false)
+        .finish(std::io::stdout());
     tracing_subscriber::fmt()
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stdout()))
+        .with_writer(writer)
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("RESTITUTION_LOG")
                 .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
