@@ -27,17 +27,63 @@ use serde::Serialize;
 use utoipa::ToSchema;
 
 /// A request's route (its matched path, or `unmatched`), method and status.
+/// `Arc<str>` and `Method` share the request's own buffers: looking a series
+/// up allocates nothing.
 #[derive(Debug, Clone, Hash, PartialEq, Eq, EncodeLabelSet)]
 struct RequestLabels {
-    route: String,
-    method: String,
+    route: Route,
+    method: MethodLabel,
     status: u16,
 }
 
 /// A route.
 #[derive(Debug, Clone, Hash, PartialEq, Eq, EncodeLabelSet)]
 struct RouteLabels {
-    route: String,
+    route: Route,
+}
+
+/// A route label: the matched path (shared with axum's `MatchedPath`).
+#[derive(Debug, Clone, Hash, PartialEq, Eq)]
+struct Route(Arc<str>);
+
+impl prometheus_client::encoding::EncodeLabelValue for Route {
+    fn encode(
+        &self,
+        encoder: &mut prometheus_client::encoding::LabelValueEncoder<'_>,
+    ) -> Result<(), std::fmt::Error> {
+        std::fmt::Write::write_str(encoder, &self.0)
+    }
+}
+
+/// A method label.
+#[derive(Debug, Clone, Hash, PartialEq, Eq)]
+struct MethodLabel(axum::http::Method);
+
+impl prometheus_client::encoding::EncodeLabelValue for MethodLabel {
+    fn encode(
+        &self,
+        encoder: &mut prometheus_client::encoding::LabelValueEncoder<'_>,
+    ) -> Result<(), std::fmt::Error> {
+        std::fmt::Write::write_str(encoder, self.0.as_str())
+    }
+}
+
+/// The routes met so far, shared as labels: a route's label is looked up,
+/// not allocated, per request (the service has a few dozen routes).
+static ROUTES: std::sync::RwLock<Vec<Arc<str>>> = std::sync::RwLock::new(Vec::new());
+
+fn route_label(path: &str) -> Route {
+    let known = |routes: &[Arc<str>]| routes.iter().find(|r| &***r == path).cloned();
+    if let Some(r) = known(&ROUTES.read().unwrap_or_else(|e| e.into_inner())) {
+        return Route(r);
+    }
+    let mut routes = ROUTES.write().unwrap_or_else(|e| e.into_inner());
+    if let Some(r) = known(&routes) {
+        return Route(r);
+    }
+    let r: Arc<str> = Arc::from(path);
+    routes.push(r.clone());
+    Route(r)
 }
 
 /// A sweep's case and precision.
@@ -217,12 +263,13 @@ pub(crate) async fn record(request: Request, next: Next) -> Response {
     else {
         return next.run(request).await;
     };
-    let route = request
-        .extensions()
-        .get::<MatchedPath>()
-        .map_or("unmatched", |p| p.as_str())
-        .to_owned();
-    let method = request.method().as_str().to_owned();
+    let route = route_label(
+        request
+            .extensions()
+            .get::<MatchedPath>()
+            .map_or("unmatched", |p| p.as_str()),
+    );
+    let method = MethodLabel(request.method().clone());
     let inner = &telemetry.0;
     inner.in_flight.inc();
     let start = Instant::now();
