@@ -336,7 +336,7 @@ async fn user(
 fn drive(
     runtime: &tokio::runtime::Runtime,
     addr: SocketAddr,
-    bodies: Vec<(&'static str, &'static str, Bytes)>,
+    bodies: Bodies,
     concurrency: usize,
     duration: Duration,
     max_requests: u64,
@@ -393,16 +393,7 @@ fn compare(smoke: bool) {
         for &c in levels {
             let bodies = vec![(path, "application/json", Bytes::from_static(body.as_bytes()))];
             // Warm each, then measure each in turn.
-            for server in [&bare, &base, &service] {
-                drive(
-                    &runtime,
-                    server.addr,
-                    bodies.clone(),
-                    c,
-                    Duration::from_millis(100),
-                    10_000,
-                );
-            }
+            warm(&runtime, &[&bare, &base, &service], &bodies, c);
             let r = drive(&runtime, bare.addr, bodies.clone(), c, duration, max);
             let mut b = drive(&runtime, base.addr, bodies.clone(), c, duration, max);
             let mut s = drive(&runtime, service.addr, bodies, c, duration, max);
@@ -419,6 +410,23 @@ fn compare(smoke: bool) {
         }
     }
     assert_eq!(failures, 0, "every request answered 200");
+}
+
+/// Requests to send, in turn: path, `Accept`, body.
+type Bodies = Vec<(&'static str, &'static str, Bytes)>;
+
+/// 100 ms (at most 10,000 requests) of `bodies` on each server.
+fn warm(runtime: &tokio::runtime::Runtime, servers: &[&Server], bodies: &Bodies, c: usize) {
+    for server in servers {
+        drive(
+            runtime,
+            server.addr,
+            bodies.clone(),
+            c,
+            Duration::from_millis(100),
+            10_000,
+        );
+    }
 }
 
 /// The service with per-request metrics recorded against the same service
@@ -438,16 +446,7 @@ fn compare_metrics(smoke: bool) {
     for (path, body) in ENDPOINTS {
         for &c in levels {
             let bodies = vec![(path, "application/json", Bytes::from_static(body.as_bytes()))];
-            for server in [&off, &on] {
-                drive(
-                    &runtime,
-                    server.addr,
-                    bodies.clone(),
-                    c,
-                    Duration::from_millis(100),
-                    10_000,
-                );
-            }
+            warm(&runtime, &[&off, &on], &bodies, c);
             let (mut total_off, mut total_on) = (0.0, 0.0);
             for _ in 0..rounds {
                 let a = drive(&runtime, off.addr, bodies.clone(), c, duration, max);
