@@ -16,6 +16,7 @@ pub mod problem;
 pub mod spatial;
 pub mod sweeps;
 pub mod telemetry;
+pub mod web;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -195,7 +196,8 @@ pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let (router, _) = served_routes().split_for_parts();
     let router = router
         .layer(axum::Extension(state.streams))
-        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)));
+        .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)))
+        .merge(web::router());
     state.telemetry.set_recording(config.metrics);
     // The probes outside the stack; the telemetry outermost, so that every
     // layer (the metrics middleware, the shedding answer) sees it.
@@ -274,9 +276,10 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
     )
 }
 
-/// Refuses every request but the probes and metrics without `Authorization: Bearer <key>` (401).
+/// Refuses every request but the probes, metrics and the explorer page
+/// without `Authorization: Bearer <key>` (401).
 async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    if OPEN_ROUTES.contains(&request.uri().path()) {
+    if OPEN_ROUTES.contains(&request.uri().path()) || web::is_page(request.uri().path()) {
         return next.run(request).await;
     }
     let token = request

@@ -1,0 +1,308 @@
+// The cases of the API as forms: every input by its JSON pointer (the API's
+// field), the paper's symbol, a unit (SI shown; any consistent units work)
+// and the range the API's schema gives it (openapi/openapi.json; the browser
+// test checks these ranges against that document).
+
+// A scalar input. `range`: {min, max, exclusiveMin, exclusiveMax}.
+function field(path, sym, unit, text, range = {}, extra = {}) {
+  return { kind: 'field', path, sym, unit, text, range, ...extra };
+}
+
+// A vector input: one field per component, under one legend.
+function vector(path, sym, unit, text, components = ['x', 'y'], extra = {}) {
+  return {
+    kind: 'vector', path, sym, unit, text,
+    fields: components.map((c) => field(`${path}/${c}`, `${sym}<sub>${c}</sub>`, unit, `${text}, ${c}`, extra.range || {}, { component: c })),
+  };
+}
+
+const POSITIVE = { min: 0, exclusiveMin: true };
+const NON_NEGATIVE = { min: 0 };
+const UNIT_INTERVAL = { min: 0, max: 1 };
+const SIGNED_UNIT = { min: -1, max: 1 };
+
+// A group of inputs under a legend.
+const group = (legend, parts, extra = {}) => ({ kind: 'group', legend, parts, ...extra });
+// One of several sets of inputs, chosen by radio buttons; `detect` picks the
+// option a request uses.
+const choice = (id, legend, options, detect) => ({ kind: 'choice', id, legend, options, detect });
+// Inputs present or absent as a whole (a second body, the twist law).
+const toggle = (id, label, parts, present) => ({ kind: 'toggle', id, label, parts, present });
+
+const restitution = () => field('/restitution', 'e', '', 'kinematic coefficient of restitution (Eq 1)', UNIT_INTERVAL);
+const friction = (text = 'Coulomb friction coefficient') => field('/friction', 'f', '', text, NON_NEGATIVE);
+const tangentialRestitution = () =>
+  field('/tangential_restitution', 'e<sub>t</sub>', '', 'tangential coefficient of restitution (Eq 20); −1: no tangential impulse', SIGNED_UNIT);
+const kinetic = () => [
+  field('/kinetic_restitution/value', 'R', '', 'kinetic coefficient of restitution P<sub>n</sub><sup>R</sup>/P<sub>n</sub><sup>A</sup> (Eq 9)', UNIT_INTERVAL),
+  field('/kinetic_restitution/approach_impulse_ratio', 'μ<sub>A</sub>', '', 'impulse ratio of the approach phase (Eq 12)'),
+  field('/kinetic_restitution/rebound_impulse_ratio', 'μ<sub>R</sub>', '', 'impulse ratio of the rebound phase (Eq 13)'),
+];
+
+// The paper's frame: one body against a barrier.
+const paperBody = (inertiaOptional) => group('Body', [
+  field('/body/mass', 'm', 'kg', 'mass', POSITIVE),
+  field('/body/inertia', 'I', 'kg m²', inertiaOptional ? 'centroidal moment of inertia m k²; blank: a point mass' : 'centroidal moment of inertia m k²', POSITIVE),
+]);
+const paperContact = (optional) => group('Contact: G from C', [
+  field('/contact/tangential_offset', 'd<sub>c</sub>', 'm', 'offset of G from C along t'),
+  field('/contact/normal_offset', 'd<sub>d</sub>', 'm', 'offset of G from C along n (a disc on the barrier: its radius)'),
+], { note: optional ? 'rigid body only; blank for a point mass' : '' });
+const paperVelocity = () => group('Initial velocity', [
+  field('/velocity/normal', 'v<sub>n</sub>', 'm/s', 'normal velocity of G; the contact must approach: v<sub>n</sub> + d<sub>c</sub> ω < 0'),
+  field('/velocity/tangential', 'v<sub>t</sub>', 'm/s', 'tangential velocity of G'),
+  field('/velocity/angular', 'ω', 'rad/s', 'angular velocity, positive turning n toward t'),
+]);
+
+// A lamina in world axes (planar case), body `i`.
+const lamina = (i) => [
+  field(`/bodies/${i}/mass`, 'm', 'kg', 'mass', POSITIVE),
+  field(`/bodies/${i}/inertia`, 'I', 'kg m²', 'moment of inertia about G', POSITIVE),
+  vector(`/bodies/${i}/position`, 'G', 'm', 'position of the mass centre'),
+  vector(`/bodies/${i}/velocity`, 'v', 'm/s', 'velocity of G'),
+  field(`/bodies/${i}/angular_velocity`, 'ω', 'rad/s', 'angular velocity, counter-clockwise positive'),
+];
+
+const XYZ = ['x', 'y', 'z'];
+// A rigid body in space (spatial case), body `i`.
+const rigid = (i) => {
+  const p = `/bodies/${i}`;
+  return [
+    field(`${p}/mass`, 'm', 'kg', 'mass', POSITIVE),
+    choice(`inertia-${i}`, 'Inertia about G', [
+      { id: 'sphere', label: 'sphere', parts: [
+        field(`${p}/inertia/sphere/radius`, 'r', 'm', 'radius: I = (2/5) m r² solid, (2/3) m r² hollow', POSITIVE),
+        field(`${p}/inertia/sphere/hollow`, '', '', 'hollow (a thin shell: tennis ball)', {}, { type: 'checkbox' }),
+      ] },
+      { id: 'principal', label: 'principal moments', parts: [
+        vector(`${p}/inertia/principal/moments`, 'I', 'kg m²', 'principal moments about the body axes (> 0)', XYZ),
+        vector(`${p}/inertia/principal/rotation`, 'q', '', 'rotation of the body axes, a quaternion (blank: identity)', ['w', 'x', 'y', 'z']),
+      ] },
+      { id: 'tensor', label: 'tensor', parts: [
+        vector(`${p}/inertia`, 'I', 'kg m²', 'inertia tensor in world axes (I<sub>xy</sub> = −∫xy dm)', ['xx', 'yy', 'zz', 'xy', 'xz', 'yz']),
+      ] },
+    ], (r) => {
+      const inertia = r?.bodies?.[i]?.inertia || {};
+      return 'principal' in inertia ? 'principal' : 'xx' in inertia ? 'tensor' : 'sphere';
+    }),
+    vector(`${p}/position`, 'G', 'm', 'position of the mass centre', XYZ),
+    vector(`${p}/velocity`, 'v', 'm/s', 'velocity of G', XYZ),
+    vector(`${p}/angular_velocity`, 'ω', 'rad/s', 'angular velocity', XYZ),
+  ];
+};
+
+const hasBodyB = (r) => Array.isArray(r?.bodies) && r.bodies.length > 1;
+
+export const CASES = [
+  {
+    id: 'normal', title: 'Normal', endpoint: '/v1/impacts/normal', section: 'section 2.1',
+    about: 'A point mass, or a rigid body without friction, against a barrier.',
+    parts: [paperBody(true), paperContact(true), paperVelocity(), group('Coefficient', [restitution()])],
+  },
+  {
+    id: 'oblique', title: 'Oblique', endpoint: '/v1/impacts/oblique', section: 'Eqs 1–19, Appendix',
+    about: 'A rigid body against a barrier: e with Coulomb friction f or a prescribed impulse ratio μ, or the two-phase kinetic R.',
+    parts: [
+      paperBody(false), paperContact(false), paperVelocity(),
+      choice('law', 'Tangential law', [
+        { id: 'friction', label: 'friction f', parts: [restitution(), friction('Coulomb friction coefficient; the ratio is capped by μ<sub>c</sub>')] },
+        { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed impulse ratio P<sub>t</sub>/P<sub>n</sub> (Eq 2)')] },
+        { id: 'kinetic', label: 'kinetic R', parts: kinetic() },
+      ], (r) => ('kinetic_restitution' in r ? 'kinetic' : 'impulse_ratio' in r ? 'ratio' : 'friction')),
+    ],
+  },
+  {
+    id: 'tangential', title: 'Tangential', endpoint: '/v1/impacts/tangential', section: 'Eqs 20–27',
+    about: 'Bilinear tangential restitution e<sub>t</sub>, capped by friction f.',
+    parts: [
+      paperBody(false), paperContact(false), paperVelocity(),
+      group('Coefficients', [restitution(), friction('Coulomb friction coefficient, the cap of the tangential impulse'), tangentialRestitution()]),
+    ],
+  },
+  {
+    id: 'torsional', title: 'Torsional', endpoint: '/v1/impacts/torsional', section: 'Eqs 28–31',
+    about: 'A body spinning about the contact normal: torsional restitution e<sub>z</sub> capped by torsional friction μ<sub>z</sub>.',
+    parts: [
+      group('Body', [
+        field('/body/mass', 'm', 'kg', 'mass', POSITIVE),
+        field('/body/normal_inertia', 'I<sub>n</sub>', 'kg m²', 'moment of inertia about the normal', POSITIVE),
+      ]),
+      group('Initial velocity', [
+        field('/velocity/normal', 'v<sub>n</sub>', 'm/s', 'normal velocity (approaching)', { max: 0, exclusiveMax: true }),
+        field('/velocity/spin', 'ω<sub>n</sub>', 'rad/s', 'spin about the normal'),
+      ]),
+      group('Coefficients', [
+        field('/restitution', 'e', '', 'coefficient of restitution of the normal impact', UNIT_INTERVAL),
+        field('/torsion/restitution', 'e<sub>z</sub>', '', 'torsional coefficient of restitution (Eq 28)', UNIT_INTERVAL),
+        field('/torsion/friction', 'μ<sub>z</sub>', '', 'torsional friction coefficient', NON_NEGATIVE),
+        field('/torsion/pitch_radius', 'ρ<sub>p</sub>', 'm', 'pitch radius of the torsional friction impulse', POSITIVE),
+      ]),
+    ],
+  },
+  {
+    id: 'planar', title: 'Planar, two bodies', endpoint: '/v1/impacts/planar', section: 'world axes',
+    about: 'Two laminae, or one against a fixed barrier, in world axes; the normal n points from B (or the barrier) into A.',
+    parts: [
+      group('Body A', lamina(0)),
+      toggle('body-b', 'Body B (unchecked: A hits a fixed barrier)', [group('Body B', lamina(1))], hasBodyB),
+      group('Contact', [
+        vector('/contact/point', 'C', 'm', 'contact point'),
+        vector('/contact/normal', 'n', '', 'normal from B into A, any length'),
+      ]),
+      choice('law', 'Law', [
+        { id: 'friction', label: 'friction f', parts: [restitution(), friction()] },
+        { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed signed ratio P<sub>t</sub>/P<sub>n</sub> along t = ẑ × n')] },
+        { id: 'tangential', label: 'tangential e<sub>t</sub>', parts: [restitution(), friction(), tangentialRestitution()] },
+        { id: 'frictionless', label: 'frictionless', parts: [restitution()] },
+        { id: 'kinetic', label: 'kinetic R', parts: kinetic() },
+      ], (r) => ('kinetic_restitution' in r ? 'kinetic' : 'tangential_restitution' in r ? 'tangential'
+        : 'impulse_ratio' in r ? 'ratio' : 'friction' in r ? 'friction' : 'frictionless')),
+    ],
+  },
+  {
+    id: 'spatial', title: 'Spatial, two bodies', endpoint: '/v1/impacts/spatial', section: 'in space',
+    about: 'Two rigid bodies, or one against a fixed barrier, in space: slip in any direction, an optional twist law about the normal.',
+    parts: [
+      group('Body A', rigid(0)),
+      toggle('body-b', 'Body B (unchecked: A hits a fixed barrier)', [group('Body B', rigid(1))], hasBodyB),
+      group('Contact', [
+        vector('/contact/point', 'C', 'm', 'contact point', XYZ),
+        vector('/contact/normal', 'n', '', 'normal from B into A, any length', XYZ),
+      ]),
+      choice('law', 'Tangential law', [
+        { id: 'friction', label: 'friction f', parts: [restitution(), friction()] },
+        { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed ratio |P<sub>t</sub>|/P<sub>n</sub>, opposing the slip', NON_NEGATIVE)] },
+        { id: 'tangential', label: 'tangential e<sub>t</sub>', parts: [restitution(), friction(), tangentialRestitution()] },
+        { id: 'frictionless', label: 'frictionless', parts: [restitution()] },
+      ], (r) => ('tangential_restitution' in r ? 'tangential' : 'impulse_ratio' in r ? 'ratio'
+        : 'friction' in r ? 'friction' : 'frictionless')),
+      toggle('twist', 'Twist law about the normal', [group('Twist', [
+        field('/torsion/restitution', 'e<sub>z</sub>', '', 'torsional coefficient of restitution', UNIT_INTERVAL),
+        field('/torsion/friction', 'μ<sub>z</sub>', '', 'torsional friction coefficient', NON_NEGATIVE),
+        field('/torsion/pitch_radius', 'ρ<sub>p</sub>', 'm', 'pitch radius of the torsional friction', POSITIVE),
+      ])], (r) => r && 'torsion' in r),
+    ],
+  },
+];
+
+// A request per case for a first visit (the API's own schema examples).
+export const DEFAULTS = {
+  normal: { body: { mass: 2.0 }, velocity: { normal: -3.0 }, restitution: 0.5 },
+  oblique: {
+    body: { mass: 1.0, inertia: 0.00125 }, contact: { tangential_offset: 0.0, normal_offset: 0.05 },
+    velocity: { normal: -1.0, tangential: 0.4, angular: 0.0 }, restitution: 0.93, friction: 0.123,
+  },
+  tangential: {
+    body: { mass: 1.0, inertia: 0.00125 }, contact: { tangential_offset: 0.0, normal_offset: 0.05 },
+    velocity: { normal: -1.0, tangential: 0.4, angular: 0.0 }, restitution: 0.93, friction: 0.123, tangential_restitution: 0.34,
+  },
+  torsional: {
+    body: { mass: 0.6, normal_inertia: 0.003456 }, velocity: { normal: -3.0, spin: 20.0 }, restitution: 0.7,
+    torsion: { restitution: 0.2, friction: 0.3, pitch_radius: 0.01 },
+  },
+};
+
+export const caseById = (id) => CASES.find((c) => c.id === id) || CASES[1];
+
+// Every field of a case (whatever option or toggle holds it), in form order.
+export function allFields(spec) {
+  const out = [];
+  const walk = (parts) => {
+    for (const p of parts) {
+      if (p.kind === 'field') out.push(p);
+      else if (p.kind === 'vector') out.push(...p.fields);
+      else if (p.kind === 'group' || p.kind === 'toggle') walk(p.parts);
+      else if (p.kind === 'choice') p.options.forEach((o) => walk(o.parts));
+    }
+  };
+  walk(spec.parts);
+  return out;
+}
+
+// The range as text: "> 0", "[0, 1]", "≥ 0", "< 0".
+export function rangeText(range) {
+  const { min, max, exclusiveMin, exclusiveMax } = range;
+  if (min !== undefined && max !== undefined) {
+    return `${exclusiveMin ? '(' : '['}${fmtBound(min)}, ${fmtBound(max)}${exclusiveMax ? ')' : ']'}`;
+  }
+  if (min !== undefined) return `${exclusiveMin ? '>' : '≥'} ${fmtBound(min)}`;
+  if (max !== undefined) return `${exclusiveMax ? '<' : '≤'} ${fmtBound(max)}`;
+  return '';
+}
+const fmtBound = (x) => String(x).replace('-', '−');
+
+// Labels of the outputs: the last segments of a response pointer (indices
+// as `*`) to the paper's symbol and words.
+export const OUTPUT_LABELS = {
+  'final_velocity/normal': ['V<sub>n</sub>', 'final normal velocity of G'],
+  'final_velocity/tangential': ['V<sub>t</sub>', 'final tangential velocity of G'],
+  'final_velocity/angular': ['Ω', 'final angular velocity'],
+  'final_velocity/spin': ['Ω<sub>n</sub>', 'final spin about the normal'],
+  'contact_velocity/initial/normal': ['v<sub>cn</sub>', 'normal contact velocity before'],
+  'contact_velocity/initial/tangential': ['v<sub>ct</sub>', 'tangential contact velocity (slip) before'],
+  'contact_velocity/initial/spin': ['s', 'relative spin about n before'],
+  'contact_velocity/final/normal': ['V<sub>cn</sub>', 'normal contact velocity after'],
+  'contact_velocity/final/tangential': ['V<sub>ct</sub>', 'tangential contact velocity (slip) after'],
+  'contact_velocity/final/spin': ['S', 'relative spin about n after'],
+  'impulse/normal': ['P<sub>n</sub>', 'normal impulse'],
+  'impulse/tangential': ['P<sub>t</sub>', 'tangential impulse'],
+  'impulse/torsional': ['M<sub>n</sub>', 'torsional impulse (couple about n)'],
+  'impulse/x': ['P<sub>x</sub>', 'impulse on A, world x'],
+  'impulse/y': ['P<sub>y</sub>', 'impulse on A, world y'],
+  'impulse/z': ['P<sub>z</sub>', 'impulse on A, world z'],
+  impulse_ratio: ['μ', 'impulse ratio P<sub>t</sub>/P<sub>n</sub>'],
+  critical_impulse_ratio: ['μ<sub>c</sub>', 'critical impulse ratio (sticking)'],
+  restitution: ['e', 'coefficient of restitution'],
+  kinetic_restitution: ['R', 'kinetic coefficient of restitution'],
+  regime: ['', 'branch of the law that answered'],
+  torsional_regime: ['', 'branch of the twist law'],
+  switch_spin: ['ω<sub>s</sub>', 'spin where the torsional branches meet (Eq 31)'],
+  'energy/initial': ['T<sub>i</sub>', 'initial kinetic energy'],
+  'energy/final': ['T<sub>f</sub>', 'final kinetic energy'],
+  'energy/loss': ['T<sub>L</sub>', 'energy lost'],
+  'energy/max_loss': ['T<sub>M</sub>', 'largest loss the contact can produce'],
+  'energy/normalized_loss': ['T<sub>L</sub>*', 'T<sub>L</sub>/T<sub>M</sub>'],
+  precision: ['', 'precision of the answer'],
+  'bodies/*/velocity/x': ['V<sub>x</sub>', 'final velocity of G, x'],
+  'bodies/*/velocity/y': ['V<sub>y</sub>', 'final velocity of G, y'],
+  'bodies/*/velocity/z': ['V<sub>z</sub>', 'final velocity of G, z'],
+  'bodies/*/velocity_change/x': ['ΔV<sub>x</sub>', 'velocity change, x'],
+  'bodies/*/velocity_change/y': ['ΔV<sub>y</sub>', 'velocity change, y'],
+  'bodies/*/velocity_change/z': ['ΔV<sub>z</sub>', 'velocity change, z'],
+  'bodies/*/delta_v': ['|ΔV|', 'delta-V'],
+  'bodies/*/angular_velocity': ['Ω', 'final angular velocity'],
+  'bodies/*/angular_velocity/x': ['Ω<sub>x</sub>', 'final angular velocity, x'],
+  'bodies/*/angular_velocity/y': ['Ω<sub>y</sub>', 'final angular velocity, y'],
+  'bodies/*/angular_velocity/z': ['Ω<sub>z</sub>', 'final angular velocity, z'],
+  'bodies/*/angular_velocity_change': ['ΔΩ', 'angular velocity change'],
+  'bodies/*/angular_velocity_change/x': ['ΔΩ<sub>x</sub>', 'angular velocity change, x'],
+  'bodies/*/angular_velocity_change/y': ['ΔΩ<sub>y</sub>', 'angular velocity change, y'],
+  'bodies/*/angular_velocity_change/z': ['ΔΩ<sub>z</sub>', 'angular velocity change, z'],
+  'contact_velocity/initial/tangential/x': ['v<sub>ct,x</sub>', 'slip before, x'],
+  'contact_velocity/initial/tangential/y': ['v<sub>ct,y</sub>', 'slip before, y'],
+  'contact_velocity/initial/tangential/z': ['v<sub>ct,z</sub>', 'slip before, z'],
+  'contact_velocity/final/tangential/x': ['V<sub>ct,x</sub>', 'slip after, x'],
+  'contact_velocity/final/tangential/y': ['V<sub>ct,y</sub>', 'slip after, y'],
+  'contact_velocity/final/tangential/z': ['V<sub>ct,z</sub>', 'slip after, z'],
+  'impulse/tangential/x': ['P<sub>t,x</sub>', 'tangential impulse, x'],
+  'impulse/tangential/y': ['P<sub>t,y</sub>', 'tangential impulse, y'],
+  'impulse/tangential/z': ['P<sub>t,z</sub>', 'tangential impulse, z'],
+};
+
+// Units of outputs, by the same keys' first segment or whole key.
+export function outputUnit(key) {
+  if (/ratio|restitution|normalized_loss|regime|precision/.test(key)) return '';
+  if (key.startsWith('energy')) return 'J';
+  if (key.startsWith('impulse/torsional')) return 'N m s';
+  if (key.startsWith('impulse')) return 'N s';
+  if (/angular|spin/.test(key)) return 'rad/s';
+  return 'm/s';
+}
+
+export function outputLabel(pointer) {
+  const key = pointer.replace(/^\//, '').replace(/\/\d+\//g, '/*/');
+  const found = OUTPUT_LABELS[key];
+  const body = pointer.match(/^\/bodies\/(\d+)\//);
+  const who = body ? (body[1] === '0' ? 'A: ' : 'B: ') : '';
+  return found ? { sym: found[0], text: who + found[1], unit: outputUnit(key) } : { sym: '', text: who + key, unit: outputUnit(key) };
+}

@@ -1,0 +1,314 @@
+// Fits: measured impacts as CSV (a header row of the API's field names
+// within one observation, dotted: `initial.normal`), the coefficients the
+// service identifies with their standard errors, and the fitted model drawn
+// over the points.
+
+import { post, problemText } from './api.js';
+import { h, parseValue, setIn, showError, clearError } from './form.js';
+import { copy, curl } from './share.js';
+import { chart } from './plot.js';
+
+const $ = (id) => document.getElementById(id);
+
+// Per fit: the endpoint, the members shared by every row unless the CSV has
+// a column for them, the columns, and how to read the fitted coefficients.
+const KINDS = {
+  tangential: {
+    endpoint: '/v1/fits/tangential',
+    common: [
+      ['body.mass', 'm', 'kg', 1.0], ['body.inertia', 'I', 'kg m²', 0.00125],
+      ['contact.tangential_offset', 'd<sub>c</sub>', 'm', 0.0], ['contact.normal_offset', 'd<sub>d</sub>', 'm', 0.05],
+    ],
+    columns: ['initial.normal', 'initial.tangential', 'initial.angular', 'final.normal', 'final.tangential', 'final.angular'],
+    hint: 'One impact per row: velocities before (initial: v_n, v_t, ω) and after (final: V_n, V_t, Ω). Body and contact from the fields above unless the CSV has body.mass, body.inertia, contact.tangential_offset, contact.normal_offset columns. At least 3 rows.',
+    coefficients: [['restitution', 'e'], ['friction', 'f'], ['tangential_restitution', 'e<sub>t</sub>'], ['r_squared', 'R²']],
+  },
+  torsional: {
+    endpoint: '/v1/fits/torsional',
+    common: [['body.mass', 'm', 'kg', 0.1], ['body.normal_inertia', 'I<sub>n</sub>', 'kg m²', 0.000036], ['pitch_radius', 'ρ<sub>p</sub>', 'm', 0.005]],
+    columns: ['initial.normal', 'initial.spin', 'final.normal', 'final.spin'],
+    hint: 'One spinning impact per row: normal velocity and spin before (initial) and after (final). Body and pitch radius from the fields above unless the CSV has those columns. At least 3 rows.',
+    coefficients: [['restitution', 'e'], ['torsional_restitution', 'e<sub>z</sub>'], ['torsional_friction', 'μ<sub>z</sub>'], ['r_squared', 'R²']],
+  },
+  planar: {
+    endpoint: '/v1/fits/planar',
+    common: [],
+    columns: ['velocity_change.x.value', 'velocity_change.x.uncertainty', 'velocity_change.y.value', 'velocity_change.y.uncertainty',
+      'angular_velocity_change.value', 'angular_velocity_change.uncertainty'],
+    hint: 'One row per body, in the order of the scene\'s bodies: its measured ΔV (x, y) and ΔΩ, each with its standard uncertainty. The scene (bodies before the impact, contact) is the Impact section\'s planar case.',
+    coefficients: [['restitution', 'e'], ['impulse_ratio', 'μ'], ['normal/angle', 'angle of n (rad)'], ['chi_squared', 'χ²'], ['degrees_of_freedom', 'degrees of freedom']],
+  },
+};
+
+export function parseCsv(text) {
+  const lines = text.split(/\r?\n/).map((l) => l.trim()).filter((l) => l && !l.startsWith('#'));
+  if (lines.length === 0) return { header: [], rows: [] };
+  const split = (l) => l.split(/[,;\t]/).map((c) => c.trim());
+  return { header: split(lines[0]), rows: lines.slice(1).map(split) };
+}
+
+export class FitPanel {
+  // app: {planarScene() -> request or null, form(), showImpactProblem()}
+  constructor(app) {
+    this.app = app;
+    $('fit-kind').addEventListener('change', () => this.renderKind(true));
+    $('fit-form').addEventListener('submit', (e) => { e.preventDefault(); this.run(); });
+    $('fit-sample').addEventListener('click', () => this.sample());
+    $('fit-curl').addEventListener('click', () => {
+      const built = this.request();
+      if (built.request) copy(curl(KINDS[$('fit-kind').value].endpoint, built.request), 'curl command copied');
+    });
+    $('fit-file').addEventListener('change', async (e) => {
+      const file = e.target.files[0];
+      if (file) $('fit-csv').value = await file.text();
+    });
+    this.renderKind(false);
+  }
+
+  kind() { return KINDS[$('fit-kind').value]; }
+
+  renderKind(clear) {
+    const kind = this.kind();
+    const fields = kind.common.map(([name, sym, unit, value]) => {
+      const id = `fit-${name.replace(/\./g, '-')}`;
+      return h('div', { class: 'field' },
+        h('label', { for: id }, h('span', { class: 'sym', html: sym }), ' ', h('code', { text: name }), unit ? h('span', { class: 'unit', text: ` ${unit}` }) : ''),
+        h('input', { id, inputmode: 'decimal', autocomplete: 'off', value: String(value), 'aria-describedby': `${id}-error` }),
+        h('span', { class: 'error', id: `${id}-error`, hidden: true }));
+    });
+    if ($('fit-kind').value === 'planar') {
+      fields.push(h('div', { class: 'field check' }, h('label', { class: 'inline', for: 'fit-normal' },
+        h('input', { type: 'checkbox', id: 'fit-normal' }), ' also fit the normal\'s direction ', h('code', { text: 'fit_normal' }))));
+    }
+    $('fit-fields').replaceChildren(...fields);
+    $('fit-kind-hint').textContent = `POST ${kind.endpoint}`;
+    $('fit-csv-hint').textContent = `Columns: ${kind.columns.join(', ')}. ${kind.hint}`;
+    if (clear) {
+      $('fit-csv').value = '';
+      $('fit-table').hidden = true;
+      $('fit-figure').hidden = true;
+      $('fit-status').textContent = '';
+    }
+  }
+
+  // The request from the CSV and the shared fields; {request} or {problem}.
+  request() {
+    const kindName = $('fit-kind').value;
+    const kind = KINDS[kindName];
+    const { header, rows } = parseCsv($('fit-csv').value);
+    if (header.length === 0) return { problem: 'Paste or upload CSV first (or press “Sample data”).' };
+    const items = rows.map((cells) => {
+      const item = {};
+      header.forEach((name, i) => {
+        const v = parseValue(cells[i] ?? '');
+        if (v !== undefined) setIn(item, '/' + name.replace(/\./g, '/'), v);
+      });
+      for (const [name] of kind.common) {
+        if (!header.includes(name)) {
+          const v = parseValue($(`fit-${name.replace(/\./g, '-')}`).value);
+          if (v !== undefined) setIn(item, '/' + name.replace(/\./g, '/'), v);
+        }
+      }
+      return item;
+    });
+    this.header = header;
+    if (kindName === 'planar') {
+      const scene = this.app.planarScene();
+      const request = { bodies: scene.bodies, contact: scene.contact, measured: items };
+      if ($('fit-normal').checked) request.fit_normal = true;
+      return { request };
+    }
+    return { request: { observations: items } };
+  }
+
+  clearErrors() {
+    clearError($('fit-csv'));
+    document.querySelectorAll('#fit-fields input').forEach(clearError);
+    $('fit-problem').hidden = true;
+  }
+
+  showProblem(problem) {
+    const pointer = problem.pointer || '';
+    const detail = problem.detail || problem.title;
+    const row = pointer.match(/^\/(observations|measured)\/(\d+)(\/.*)?$/);
+    if (row) {
+      const member = (row[3] || '').slice(1).replace(/\//g, '.');
+      const shared = this.kind().common.find(([name]) => member === name || member.startsWith(`${name}.`));
+      if (shared && !this.header.includes(shared[0])) {
+        showError($(`fit-${shared[0].replace(/\./g, '-')}`), detail);
+      } else {
+        showError($('fit-csv'), `Row ${Number(row[2]) + 1}${member ? ` (${member})` : ''}: ${detail}`);
+      }
+    } else if (pointer === '/observations' || pointer === '/measured' || pointer === '') {
+      showError($('fit-csv'), detail);
+    } else if (/^\/(bodies|contact)/.test(pointer)) {
+      this.app.showImpactProblem(problem);
+    }
+    $('fit-problem').textContent = problemText(problem);
+    $('fit-problem').hidden = false;
+  }
+
+  async run() {
+    this.clearErrors();
+    const built = this.request();
+    if (!built.request) {
+      showError($('fit-csv'), built.problem);
+      return;
+    }
+    const kindName = $('fit-kind').value;
+    $('fit-status').textContent = 'Fitting…';
+    $('fit-table').hidden = true;
+    $('fit-figure').hidden = true;
+    const answer = await post(this.kind().endpoint, built.request);
+    if (!answer.ok) {
+      $('fit-status').textContent = 'The service refused the fit.';
+      this.showProblem(answer.problem);
+      return;
+    }
+    this.table(answer.body);
+    $('fit-status').textContent = `Fitted ${(built.request.observations || built.request.measured).length} rows.`;
+    await this.draw(kindName, built.request, answer.body);
+  }
+
+  table(fit) {
+    const rows = [];
+    for (const [path, sym] of this.kind().coefficients) {
+      const value = path.split('/').reduce((at, k) => (at == null ? at : at[k]), fit);
+      if (value === undefined) {
+        rows.push([sym, path, 'not identified', '']);
+      } else if (value !== null && typeof value === 'object') {
+        rows.push([sym, path, value.value, value.standard_error ?? '—']);
+      } else {
+        rows.push([sym, path, value ?? '—', '']);
+      }
+    }
+    if (fit.impulse) rows.push(['P<sub>x</sub>, P<sub>y</sub>', 'impulse', `${fit.impulse.x}, ${fit.impulse.y}`, `${fit.impulse_standard_error.x}, ${fit.impulse_standard_error.y}`]);
+    if (Array.isArray(fit.regimes)) {
+      const counts = {};
+      fit.regimes.forEach((r) => { counts[r] = (counts[r] || 0) + 1; });
+      rows.push(['regimes', 'regimes', Object.entries(counts).map(([k, n]) => `${k} ${n}`).join(', '), '']);
+    }
+    if (Array.isArray(fit.residuals)) {
+      const flat = fit.residuals.flat().filter((x) => typeof x === 'number');
+      const rms = Math.sqrt(flat.reduce((a, x) => a + x * x, 0) / Math.max(flat.length, 1));
+      rows.push(['residuals', 'residuals', `RMS ${rms.toPrecision(4)} over ${flat.length}`, '']);
+    }
+    const tbody = $('fit-table').querySelector('tbody');
+    tbody.replaceChildren(...rows.map(([sym, path, value, se]) => h('tr', {},
+      h('th', { scope: 'row', html: sym }), h('td', {}, h('code', { text: path.replace(/\//g, '.') })),
+      h('td', { class: 'num', text: String(value).replace(/^-/, '−') }), h('td', { class: 'num', text: String(se).replace(/^-/, '−') }))));
+    $('fit-table').hidden = false;
+  }
+
+  // The fitted model over the points, in the paper's normalised axes
+  // (velocities over the approach speed, for the first row's body: the
+  // model is homogeneous in the velocities).
+  async draw(kindName, request, fit) {
+    const figure = $('fit-figure');
+    if (kindName === 'planar') { figure.hidden = true; return; }
+    const obs = request.observations;
+    const o0 = obs[0];
+    let points;
+    let sweep;
+    let xLabel;
+    let yLabel;
+    if (kindName === 'tangential') {
+      points = obs.map((o) => {
+        const dc = o.contact?.tangential_offset ?? 0; const dd = o.contact?.normal_offset ?? 0;
+        const vcn = o.initial.normal + dc * (o.initial.angular ?? 0);
+        const vct = (o.initial.tangential ?? 0) - dd * (o.initial.angular ?? 0);
+        const Vct = (o.final.tangential ?? 0) - dd * (o.final.angular ?? 0);
+        return [vct / Math.abs(vcn), Vct / Math.abs(vcn)];
+      });
+      const xs = points.map((p) => p[0]);
+      if (fit.friction && fit.tangential_restitution) {
+        sweep = {
+          case: 'tangential',
+          base: { body: o0.body, contact: o0.contact, velocity: { normal: -1, tangential: 0, angular: 0 },
+            restitution: fit.restitution.value, friction: Math.max(fit.friction.value, 0), tangential_restitution: Math.min(Math.max(fit.tangential_restitution.value, -1), 1) },
+          axes: [{ path: '/velocity/tangential', linspace: { start: Math.min(...xs), stop: Math.max(...xs), count: 201 } }],
+          outputs: ['/contact_velocity/final/tangential'],
+        };
+      }
+      xLabel = 'v_ct / |v_cn| (before)';
+      yLabel = 'V_ct / |v_cn| (after)';
+    } else {
+      points = obs.map((o) => [o.initial.spin / Math.abs(o.initial.normal), o.final.spin / Math.abs(o.initial.normal)]);
+      const xs = points.map((p) => p[0]);
+      if (fit.torsional_friction) {
+        sweep = {
+          case: 'torsional',
+          base: { body: o0.body, velocity: { normal: -1, spin: 0 }, restitution: Math.min(Math.max(fit.restitution.value, 0), 1),
+            torsion: { restitution: Math.min(Math.max(fit.torsional_restitution.value, 0), 1), friction: Math.max(fit.torsional_friction.value, 0), pitch_radius: o0.pitch_radius } },
+          axes: [{ path: '/velocity/spin', linspace: { start: Math.min(...xs), stop: Math.max(...xs), count: 201 } }],
+          outputs: ['/final_velocity/spin'],
+        };
+      }
+      xLabel = 'ω_n / |v_n| (before)';
+      yLabel = 'Ω_n / |v_n| (after)';
+    }
+    const series = [{ label: 'measured', kind: 'points', points, color: '#1f5fbf' }];
+    let note = '';
+    if (sweep) {
+      const line = await post('/v1/sweeps', sweep);
+      if (line.ok) {
+        series.push({ label: 'fitted model', kind: 'line', points: line.body.rows.map((r) => [r[0], r[1]]), color: '#b54a00' });
+      } else {
+        note = ` The fitted line could not be drawn: ${problemText(line.problem)}.`;
+      }
+    } else {
+      note = ' Not every coefficient was identified, so no line is drawn.';
+    }
+    const svg = chart({ title: `${kindName} fit: measured points and the fitted model`, xLabel, yLabel, series });
+    $('fit-plot').replaceChildren(svg);
+    $('fit-caption').textContent = `Normalised by the approach speed, for the first row's body; the line is the service's sweep of the fitted model.${note}`;
+    figure.hidden = false;
+  }
+
+  // Synthetic measurements from the service itself: the Maw disc (tangential),
+  // Figure 4's ball (torsional), the planar scene's own outcome (planar),
+  // with a small deterministic wiggle.
+  async sample() {
+    const kindName = $('fit-kind').value;
+    this.clearErrors();
+    $('fit-status').textContent = 'Making sample data with the service…';
+    let csv;
+    if (kindName === 'tangential') {
+      const sweep = {
+        case: 'tangential',
+        base: { body: { mass: 1, inertia: 0.00125 }, contact: { tangential_offset: 0, normal_offset: 0.05 }, velocity: { normal: -1, tangential: 0, angular: 0 },
+          restitution: 0.93, friction: 0.123, tangential_restitution: 0.34 },
+        axes: [{ path: '/velocity/tangential', linspace: { start: 0.05, stop: 2.95, count: 30 } }],
+        outputs: ['/final_velocity'],
+      };
+      const answer = await post('/v1/sweeps', sweep);
+      if (!answer.ok) { this.showProblem(answer.problem); return; }
+      const lines = answer.body.rows.map((r, i) => {
+        const w = 1e-3 * Math.sin(i * 2.399);
+        return [-1, r[0], 0, r[1] + w, r[2] - w, r[3]].map((x) => +x.toPrecision(8)).join(',');
+      });
+      csv = [KINDS.tangential.columns.join(','), ...lines].join('\n');
+    } else if (kindName === 'torsional') {
+      const sweep = {
+        case: 'torsional',
+        base: { body: { mass: 0.1, normal_inertia: 0.000036 }, velocity: { normal: -3, spin: 0 }, restitution: 0.8,
+          torsion: { restitution: 0.2, friction: 0.3, pitch_radius: 0.005 } },
+        axes: [{ path: '/velocity/spin', linspace: { start: -50, stop: 54.5, count: 20 } }],
+        outputs: ['/final_velocity'],
+      };
+      const answer = await post('/v1/sweeps', sweep);
+      if (!answer.ok) { this.showProblem(answer.problem); return; }
+      const lines = answer.body.rows.map((r, i) => [-3, r[0], r[1], r[2] + 0.1 * Math.cos(i)].map((x) => +x.toPrecision(8)).join(','));
+      csv = [KINDS.torsional.columns.join(','), ...lines].join('\n');
+    } else {
+      const scene = this.app.planarScene();
+      const answer = await post('/v1/impacts/planar', scene);
+      if (!answer.ok) { this.showProblem(answer.problem); return; }
+      const lines = answer.body.bodies.map((b) => [b.velocity_change.x, 0.1, b.velocity_change.y, 0.1, b.angular_velocity_change, 0.1]
+        .map((x) => +x.toPrecision(8)).join(','));
+      csv = [KINDS.planar.columns.join(','), ...lines].join('\n');
+    }
+    $('fit-csv').value = csv;
+    $('fit-status').textContent = 'Sample data ready: press Fit.';
+  }
+}
