@@ -6,7 +6,9 @@
 //! The torsional case (spin swept, every output) beside a bare loop over
 //! `restitution::solve`: the cost of the sweep's per-point checks.
 //!
-//! `cargo bench --bench sweep` (figures in docs/performance.md).
+//! `cargo bench --bench sweep` (figures in docs/performance.md);
+//! `RESTITUTION_KERNELS=portable cargo bench --bench sweep` runs the portable
+//! copy of the solver instead of the x86-64-v3 one (`restitution::kernels`).
 
 use std::hint::black_box;
 
@@ -127,7 +129,16 @@ fn bare(p: &PlanarImpact) -> [f64; 9] {
     ]
 }
 
+/// The kernels the environment asks for (`RESTITUTION_KERNELS=portable`), as the binary does.
+fn select_kernels() {
+    if std::env::var("RESTITUTION_KERNELS").as_deref() == Ok("portable") {
+        restitution::kernels::force_portable();
+    }
+    eprintln!("kernels: {}", restitution::kernels::selected().as_str());
+}
+
 fn single_core(c: &mut Criterion) {
+    select_kernels();
     let mut group = c.benchmark_group("sweep_oblique_one_core");
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);
@@ -156,6 +167,7 @@ fn single_core(c: &mut Criterion) {
 }
 
 fn all_cores(c: &mut Criterion) {
+    select_kernels();
     let points = 2_000_000;
     let mut group = c.benchmark_group("sweep_oblique_all_cores");
     group.throughput(Throughput::Elements(points));
@@ -197,6 +209,7 @@ fn torsional_base() -> TorsionalImpact {
 }
 
 fn torsional_one_core(c: &mut Criterion) {
+    select_kernels();
     let mut group = c.benchmark_group("sweep_torsional_one_core");
     group.throughput(Throughput::Elements(POINTS));
     group.sample_size(20);

@@ -27,12 +27,14 @@
 //! Conventions, derivations and every departure from the printed paper are in
 //! `docs/physics.md`.
 #![warn(missing_docs)]
-#![forbid(unsafe_code)]
+// Unsafe code only where `kernels` calls the copy compiled for the CPU's features.
+#![deny(unsafe_code)]
 
 pub(crate) mod arith;
 pub mod error;
 pub mod fit;
 pub mod impact;
+pub mod kernels;
 pub(crate) mod model;
 pub mod outcome;
 #[cfg(feature = "plot")]

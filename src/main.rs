@@ -9,6 +9,9 @@ use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if cli.kernels == "portable" {
+        restitution::kernels::force_portable();
+    }
     match cli.command {
         Some(Command::Openapi) => {
             print!("{}", restitution::http::openapi_json());
@@ -72,7 +75,7 @@ async fn serve(mut config: restitution::http::ServiceConfig) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    tracing::info!(bind = %config.bind, "listening");
+    tracing::info!(bind = %config.bind, kernels = restitution::kernels::selected().as_str(), "listening");
     match restitution::http::serve(listener, &config).await {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {

@@ -16,6 +16,12 @@ pub struct Cli {
     /// Service settings when no subcommand is given.
     #[command(flatten)]
     pub serve: ServiceConfig,
+    /// Which compiled copy of the solver's hot code runs: `auto` (the
+    /// x86-64-v3 copy where the CPU has AVX2 and FMA, else the portable one)
+    /// or `portable` (the same answers, slower).
+    #[arg(long, global = true, env = "RESTITUTION_KERNELS", default_value = "auto",
+          value_parser = ["auto", "portable"])]
+    pub kernels: String,
 }
 
 /// Subcommands.

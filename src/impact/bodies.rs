@@ -375,6 +375,7 @@ impl Case for BodiesImpact {
 
     fn fix(&self, _swept: &[Input]) {}
 
+    #[inline(always)]
     fn evaluate(
         &self,
         _fixed: &(),

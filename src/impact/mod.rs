@@ -184,11 +184,16 @@ pub fn solve_in<C: Case>(
     outputs: Outputs,
     arithmetic: Arithmetic,
 ) -> (Result<C::Outcome>, Stage) {
-    let fixed = impact.fix(&[]);
-    let in_range = arithmetic == Arithmetic::Fast && impact.all_in_fast_range();
-    let mut outcome = C::Outcome::default();
-    let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
-    (result.map(|()| outcome), stage)
+    crate::kernels::run(
+        #[inline(always)]
+        || {
+            let fixed = impact.fix(&[]);
+            let in_range = arithmetic == Arithmetic::Fast && impact.all_in_fast_range();
+            let mut outcome = C::Outcome::default();
+            let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
+            (result.map(|()| outcome), stage)
+        },
+    )
 }
 
 /// One case prepared for many impacts that differ only in the `swept`
@@ -230,7 +235,7 @@ impl<C: Case> Solver<C> {
     }
 
     /// Solves `impact` into `out` (left as it was on a refusal).
-    #[inline]
+    #[inline(always)]
     pub fn solve_into(&self, impact: &C, out: &mut C::Outcome) -> Result<()> {
         let in_range = self.arithmetic == Arithmetic::Fast
             && self.fixed_in_range
@@ -285,7 +290,17 @@ pub(crate) fn evaluate<T>(
 /// The model in exact fractions alone.
 #[inline(never)]
 fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
-    (decided(model.run::<Surd>(out)), Stage::Rational)
+    (decided(stage::<Surd, T>(model, out)), Stage::Rational)
+}
+
+/// One stage of the exact evaluation, in the kernels the CPU supports, in a
+/// function of its own.
+#[inline(always)]
+fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
+    crate::kernels::run(
+        #[inline(always)]
+        || model.run::<N>(out),
+    )
 }
 
 /// The f64 answer, or the exact one where the f64 evaluation leaves the f64
@@ -350,18 +365,18 @@ fn adaptive_stages<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage)
         Err(Fail::Refused(e)) => Some(Err(e)),
         Err(Fail::Undecided(Undecided)) => None,
     };
-    let why = match model.run::<Compensated>(out) {
+    let why = match stage::<Compensated, T>(model, out) {
         Ok(()) => return (Ok(()), Stage::Compensated),
         Err(Fail::Refused(e)) => return (Err(e), Stage::Compensated),
         Err(Fail::Undecided(why)) => why,
     };
     let double_double = match why {
-        Unsettled::Range => settled(model.run::<Bounded>(out)),
+        Unsettled::Range => settled(stage::<Bounded, T>(model, out)),
         Unsettled::Close => None,
         // The static bound does not cover a root; double-double's tracked one does.
-        Unsettled::Root => settled(model.run::<Bounded>(out)),
+        Unsettled::Root => settled(stage::<Bounded, T>(model, out)),
     };
-    let tracked = || match model.run::<Bounded<true>>(out) {
+    let tracked = || match stage::<Bounded<true>, T>(model, out) {
         Ok(()) => Some(Ok(())),
         Err(Fail::Refused(e)) => Some(Err(e)),
         Err(Fail::Undecided(Undecided)) => None,
@@ -369,7 +384,7 @@ fn adaptive_stages<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage)
     if let Some(answer) = double_double.or_else(tracked) {
         return (answer, Stage::DoubleDouble);
     }
-    (decided(model.run::<Surd>(out)), Stage::Rational)
+    (decided(stage::<Surd, T>(model, out)), Stage::Rational)
 }
 
 /// The rational pass's result: an answer or the model's refusal.

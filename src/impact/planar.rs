@@ -511,7 +511,7 @@ impl Case for PlanarImpact {
         (rigid && !swept.iter().any(|i| SCENE.contains(i))).then(|| self.scene())
     }
 
-    #[inline]
+    #[inline(always)]
     fn evaluate(
         &self,
         fixed: &Self::Fixed,

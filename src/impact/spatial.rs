@@ -551,6 +551,7 @@ impl Case for SpatialImpact {
 
     fn fix(&self, _swept: &[Input]) {}
 
+    #[inline(always)]
     fn evaluate(
         &self,
         _fixed: &(),

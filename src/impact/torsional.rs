@@ -252,6 +252,7 @@ impl Case for TorsionalImpact {
 
     fn fix(&self, _swept: &[Input]) {}
 
+    #[inline(always)]
     fn evaluate(
         &self,
         _fixed: &(),

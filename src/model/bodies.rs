@@ -374,6 +374,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
 /// refused unless the contact approaches (`ũ_n < 0`, decided exactly in the
 /// exact fields; the fast evaluation is only asked where validation found the
 /// f64 sign certain).
+#[inline(always)]
 pub(crate) fn bodies<N: Field>(
     impact: &BodiesImpact,
     outputs: Outputs,

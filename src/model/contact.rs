@@ -303,6 +303,7 @@ fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Opti
 /// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f`
 /// (regime `capped`), else sliding through separation with `|μ| = f`
 /// opposing the initial slip.
+#[inline(always)]
 fn bilinear<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
@@ -363,6 +364,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
 /// The Appendix's two phases: approach to `ū_n = 0` with `μ_A`, rebound
 /// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) / D(μ_A)` (Eq 11, A-16). The
 /// reported ratio is the overall `μ = P_t / P_n`.
+#[inline(always)]
 fn kinetic<N: Field, S: ContactSpace<N>>(
     sc: &S,
     r: f64,

@@ -313,6 +313,7 @@ impl<N: Field> Scene<'_, N> {
 
 /// A planar impact of a rigid body in the field `N`, in a validated scene
 /// under a validated law.
+#[inline(always)]
 pub(crate) fn rigid<N: Field>(
     scene: &PlanarScene,
     law: &Law,
@@ -334,6 +335,7 @@ pub(crate) struct PointMass {
 /// A point mass (section 2.1): `V_n = −e v_n`, `P_n = m (1 + e)(−v_n)`, `V_t = v_t`;
 /// `μ_c = v_t / ((1 + e) v_n)`, the limit of Eq 14 for `k → ∞`; `T_M` is the
 /// whole initial energy (the mass stops), `T_L = ½ m (1 − e)(1 + e) v_n²`.
+#[inline(always)]
 pub(crate) fn point_mass<N: Field>(
     p: &PointMass,
     outputs: Outputs,

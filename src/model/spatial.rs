@@ -732,6 +732,7 @@ fn three(o: &[Output], from: usize) -> [Output; 3] {
 
 /// A validated spatial contact in the field `N`: refused unless it
 /// approaches (`u·n < 0`, decided exactly in the exact fields).
+#[inline(always)]
 pub(crate) fn spatial<N: Radical>(
     impact: &SpatialImpact,
     outputs: Outputs,

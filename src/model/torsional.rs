@@ -32,6 +32,7 @@ pub(crate) struct Torsion {
 /// The torsional model in the field `N`. The change `ω_n − Ω_n` and the sum
 /// `ω_n + Ω_n` are each formed from their branch's formula, so the loss
 /// `½ I_n (ω_n − Ω_n)(ω_n + Ω_n)` never subtracts two nearly equal energies.
+#[inline(always)]
 pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut TorsionalOutcome) -> Exact<N, ()> {
     let one = N::of(1.0);
     let (m, i_n, vn, w, e, ez) = (

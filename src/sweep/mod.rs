@@ -166,7 +166,16 @@ impl<C: SweepCase> Sweep<C> {
 
     /// Evaluates the points in `range` (indices into the whole grid, clipped to
     /// the sweep's own range), in order, handing each to `visit`.
-    pub fn for_each_in(&self, range: Range<u64>, mut visit: impl FnMut(Row<'_>)) {
+    /// Runs in the kernels the CPU supports ([`crate::kernels`]).
+    pub fn for_each_in(&self, range: Range<u64>, visit: impl FnMut(Row<'_>)) {
+        crate::kernels::run(
+            #[inline(always)]
+            || self.for_each_in_here(range, visit),
+        )
+    }
+
+    #[inline(always)]
+    fn for_each_in_here(&self, range: Range<u64>, mut visit: impl FnMut(Row<'_>)) {
         let start = range.start.max(self.range.start);
         let end = range.end.min(self.range.end);
         if start >= end {
@@ -282,7 +291,7 @@ impl<C: Case> SweepCase for CaseSweep<C> {
         self.columns.len()
     }
 
-    #[inline]
+    #[inline(always)]
     fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
         let mut outcome = C::Outcome::default();
         self.solver.solve_into(point, &mut outcome)?;

@@ -1,0 +1,129 @@
+//! Which compiled copy of the hot code runs: the portable one (baseline
+//! x86-64, or whatever the target is), or, on an x86-64 CPU with AVX2, FMA and
+//! the rest of x86-64-v3 (Haswell, Zen and later), a copy compiled for those
+//! instructions. The choice is made once, at the first use, from what the CPU
+//! reports; [`force_portable`] overrides it (the binary's `--kernels portable`,
+//! `RESTITUTION_KERNELS=portable`).
+//!
+//! Answers are the same bits either way: Rust never contracts `a·b + c` into a
+//! fused multiply-add by itself, and the model's explicit `mul_add` is
+//! correctly rounded on both paths (one instruction on x86-64-v3; a call into
+//! compiler-builtins' software fma on the portable path, which is what makes
+//! that path slower). `tests/kernels.rs` runs both and compares the bytes.
+//!
+//! [`run`] is the only door: it wraps a closure whose body is inlined into
+//! the x86-64-v3 copy. The solver's hot functions are `#[inline]`, so what a
+//! sweep chunk or one solve calls is compiled into that copy; the stages of
+//! the exact evaluation are out of line and pass through [`run`] again.
+#![allow(unsafe_code)]
+
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// A compiled copy of the hot code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernels {
+    /// Compiled for the build's target (baseline x86-64 unless told otherwise).
+    Portable,
+    /// Compiled for x86-64-v3 (AVX2, FMA, BMI1/2, LZCNT, MOVBE, F16C).
+    X86_64V3,
+}
+
+impl Kernels {
+    /// The name the binary's `--kernels` option and its log use.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kernels::Portable => "portable",
+            Kernels::X86_64V3 => "x86-64-v3",
+        }
+    }
+}
+
+const UNDECIDED: u8 = 0;
+const PORTABLE: u8 = 1;
+const V3: u8 = 2;
+
+static SELECTED: AtomicU8 = AtomicU8::new(UNDECIDED);
+
+/// The copy that runs: x86-64-v3 where the CPU has it, unless
+/// [`force_portable`] was called.
+#[inline]
+pub fn selected() -> Kernels {
+    match SELECTED.load(Ordering::Relaxed) {
+        PORTABLE => Kernels::Portable,
+        V3 => Kernels::X86_64V3,
+        _ => detect(),
+    }
+}
+
+#[cold]
+fn detect() -> Kernels {
+    let kernels = if cpu_has_v3() {
+        Kernels::X86_64V3
+    } else {
+        Kernels::Portable
+    };
+    let code = if kernels == Kernels::X86_64V3 {
+        V3
+    } else {
+        PORTABLE
+    };
+    // A concurrent force_portable wins.
+    match SELECTED.compare_exchange(UNDECIDED, code, Ordering::Relaxed, Ordering::Relaxed) {
+        Ok(_) => kernels,
+        Err(_) => selected(),
+    }
+}
+
+/// Runs the portable copy from now on, whatever the CPU has (for comparison
+/// and for a CPU whose feature report is not trusted).
+pub fn force_portable() {
+    SELECTED.store(PORTABLE, Ordering::Relaxed);
+}
+
+/// Whether the CPU has every x86-64-v3 feature the fast copy is compiled for.
+fn cpu_has_v3() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("fma")
+            && std::arch::is_x86_feature_detected!("bmi1")
+            && std::arch::is_x86_feature_detected!("bmi2")
+            && std::arch::is_x86_feature_detected!("lzcnt")
+            && std::arch::is_x86_feature_detected!("movbe")
+            && std::arch::is_x86_feature_detected!("f16c")
+            && std::arch::is_x86_feature_detected!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Runs `work` in the selected copy. Either way `work` gets a function (and
+/// a stack frame) of its own: the stages of the exact evaluation, each run
+/// through here, do not pile their frames into one.
+#[inline(always)]
+pub(crate) fn run<R>(work: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if selected() == Kernels::X86_64V3 {
+        // SAFETY: `selected()` is `X86_64V3` only when `cpu_has_v3()` found
+        // every feature `v3` is compiled with on this CPU.
+        return unsafe { v3(work) };
+    }
+    portable(work)
+}
+
+/// `work` compiled for the build's target.
+#[inline(never)]
+fn portable<R>(work: impl FnOnce() -> R) -> R {
+    work()
+}
+
+/// `work` compiled for x86-64-v3; its callees are inlined into it where they
+/// are `#[inline]` (a function compiled for fewer features may be inlined
+/// into one compiled for more).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,movbe,f16c,popcnt")]
+fn v3<R>(work: impl FnOnce() -> R) -> R {
+    work()
+}
