@@ -6,11 +6,18 @@
 //! valgrind --tool=callgrind --callgrind-out-file=callgrind.out target/release/examples/sweep_profile
 //! callgrind_annotate --inclusive=yes callgrind.out | head -40
 //! ```
+//!
+//! `RESTITUTION_KERNELS=portable` runs the portable copy of the solver instead
+//! of the x86-64-v3 one (`restitution::kernels`), as the binary does.
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision};
 
 fn main() {
+    if std::env::var("RESTITUTION_KERNELS").as_deref() == Ok("portable") {
+        restitution::kernels::force_portable();
+    }
+    eprintln!("kernels: {}", restitution::kernels::selected().as_str());
     let base = PlanarImpact::rigid(
         1.0,
         0.00125,

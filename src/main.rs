@@ -75,7 +75,20 @@ async fn serve(mut config: restitution::http::ServiceConfig) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    tracing::info!(bind = %config.bind, kernels = restitution::kernels::selected().as_str(), "listening");
+    // The address actually bound (a port of 0 is chosen by the system), and
+    // the explorer's URL to open.
+    let bound = listener.local_addr().unwrap_or(config.bind);
+    let host = match bound.ip() {
+        ip if ip.is_unspecified() => "127.0.0.1".to_string(),
+        std::net::IpAddr::V6(ip) => format!("[{ip}]"),
+        ip => ip.to_string(),
+    };
+    tracing::info!(
+        bind = %bound,
+        explorer = %format!("http://{host}:{}/", bound.port()),
+        kernels = restitution::kernels::selected().as_str(),
+        "listening"
+    );
     match restitution::http::serve(listener, &config).await {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
