@@ -4,7 +4,11 @@
 //!
 //! ```text
 //! cargo run --release --example accuracy_report
+//! cargo run --release --example accuracy_report -- --plot-only
 //! ```
+//!
+//! `--plot-only` measures nothing: it redraws `docs/accuracy.svg` from the
+//! table already in `docs/accuracy.md`.
 //!
 //! Methods: `fast` (the service's fast mode: closed forms, escalating extreme
 //! inputs to the exact evaluator), `nalgebra` (the 3×3 momentum system by LU,
@@ -22,8 +26,8 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use linear::{TangentialClosure, solve_momentum};
-use plotters::prelude::*;
 use restitution::impact::{Arithmetic, solve_in};
+use restitution::plot::{Color, Figure, LegendEntry, Marker, Markers, Scale, Shape};
 use restitution::{
     Body, Contact, Law, Outputs, PlanarImpact, PlanarScene, PlanarVelocity, Precision, Regime,
     TorsionalImpact, solve,
@@ -110,6 +114,10 @@ impl Set {
             Set::Typical => "typical",
             Set::Stress => "stress",
         }
+    }
+
+    fn from_name(name: &str) -> Option<Set> {
+        [Set::Typical, Set::Stress].into_iter().find(|s| s.name() == name)
     }
 }
 
@@ -442,66 +450,151 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
     ));
 }
 
-fn plot(rows: &[Row], path: &str) {
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
-    root.fill(&WHITE).expect("svg");
-    let x_max = rows.iter().map(|r| r.median_ns).fold(1.0, f64::max) * 3.0;
-    let y_max = rows
+/// One point of the plot: a (case, set, method) row of the table.
+struct PlotPoint {
+    case: String,
+    set: Set,
+    method: String,
+    median_ns: f64,
+    max_steps: f64,
+}
+
+/// The methods' colours, the cases' shapes: the same in the plot and its legend.
+const METHODS: [(&str, Color); 4] = [
+    ("fast", Color(0, 114, 178)),
+    ("nalgebra", Color(213, 94, 0)),
+    ("exact", Color(17, 119, 51)),
+    ("rational", Color(170, 51, 119)),
+];
+const CASES: [(&str, Shape); 4] = [
+    ("prescribed μ", Shape::Circle),
+    ("Coulomb f", Shape::Square),
+    ("tangential e_t", Shape::Triangle),
+    ("torsional", Shape::Diamond),
+];
+
+/// A row's marker: the method's colour, the case's shape, filled for the
+/// typical set and hollow for the stress set.
+fn marker(method: &str, case: &str, set: Set) -> Marker {
+    let color = METHODS
         .iter()
-        .map(|r| r.max_steps + 0.5)
-        .filter(|y| y.is_finite())
-        .fold(1.0, f64::max)
-        * 3.0;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Time per solve against maximum error", ("sans-serif", 20))
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((5.0..x_max).log_scale(), (0.3..y_max).log_scale())
-        .expect("chart");
-    chart
-        .configure_mesh()
-        .x_desc("median time per solve (ns, log)")
-        .y_desc("max error: grid steps from the exact value + 1/2 (log)")
-        .draw()
-        .expect("mesh");
-    let methods = [
-        ("fast", RGBColor(78, 121, 167)),
-        ("nalgebra", RGBColor(242, 142, 43)),
-        ("exact", RGBColor(89, 161, 79)),
-        ("rational", RGBColor(225, 87, 89)),
-    ];
-    for (method, color) in methods {
-        let points: Vec<(f64, f64, &Row)> = rows
+        .find(|m| m.0 == method)
+        .map_or(Color(64, 64, 64), |m| m.1);
+    let shape = CASES.iter().find(|c| c.0 == case).map_or(Shape::Plus, |c| c.1);
+    let mut m = match set {
+        Set::Typical => Marker::filled(shape, color),
+        Set::Stress => Marker::hollow(shape, color),
+    };
+    m.size = 5.0;
+    m.stroke_width = 1.8;
+    m
+}
+
+/// Log–log plot of median time per solve against maximum error + ½, one marker per row;
+/// colour the method, shape the case, filled the typical set, hollow the stress set.
+fn plot(points: &[PlotPoint], path: &str) {
+    let grey = Color(64, 64, 64);
+    let mut legend = vec![LegendEntry::Heading("Method".to_owned())];
+    legend.extend(
+        METHODS
             .iter()
-            .filter(|r| r.method == method && (r.max_steps + 0.5).is_finite())
-            .map(|r| (r.median_ns, r.max_steps + 0.5, r))
-            .collect();
-        chart
-            .draw_series(points.iter().map(|(x, y, r)| {
-                let marker = if r.set == Set::Typical { 0 } else { 1 };
-                EmptyElement::at((*x, *y))
-                    + Circle::new((0, 0), 5, ShapeStyle::from(color).stroke_width(2 - marker))
-                    + Text::new(
-                        format!("{} {}", r.case, &r.set.name()[..1]),
-                        (6, -12),
-                        ("sans-serif", 10).into_font().color(&color),
-                    )
-            }))
-            .expect("series")
-            .label(method)
-            .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
+            .map(|(m, c)| LegendEntry::Swatch(*c, (*m).to_owned())),
+    );
+    legend.push(LegendEntry::Heading("Case".to_owned()));
+    legend.extend(
+        CASES
+            .iter()
+            .map(|(c, s)| LegendEntry::Marker(Marker::hollow(*s, grey), (*c).to_owned())),
+    );
+    legend.push(LegendEntry::Heading("Set".to_owned()));
+    legend.push(LegendEntry::Marker(
+        Marker::filled(Shape::Circle, grey),
+        "typical: filled".to_owned(),
+    ));
+    legend.push(LegendEntry::Marker(
+        Marker::hollow(Shape::Circle, grey),
+        "stress: hollow".to_owned(),
+    ));
+    // Stress sets first, so the filled typical markers sit on top.
+    let mut sets: Vec<Markers> = Vec::new();
+    for set in [Set::Stress, Set::Typical] {
+        for p in points
+            .iter()
+            .filter(|p| p.set == set && (p.max_steps + 0.5).is_finite())
+        {
+            sets.push(Markers {
+                label: format!("{}, {}, {}", p.method, p.case, set.name()),
+                points: vec![(p.median_ns, p.max_steps + 0.5)],
+                marker: Some(marker(&p.method, &p.case, set)),
+            });
+        }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .expect("legend");
-    root.present().expect("write svg");
+    let rows: Vec<String> = points
+        .iter()
+        .map(|p| {
+            format!(
+                "{} {} {}: {:.0} ns, {} steps",
+                p.method,
+                p.case,
+                p.set.name(),
+                p.median_ns,
+                p.max_steps
+            )
+        })
+        .collect();
+    let figure = Figure {
+        title: "Time per solve against maximum error".to_owned(),
+        subtitle: "one marker per case, input set and method (the table in docs/accuracy.md)".to_owned(),
+        description: format!(
+            "Log–log plot of the median time per solve (ns) against the maximum error in grid steps from \
+             the correctly rounded exact value plus one half. Colour: method; shape: case; filled: typical \
+             set, hollow: stress set. Points: {}.",
+            rows.join("; ")
+        ),
+        x_name: "median time per solve (ns)".to_owned(),
+        y_name: "max error + ½ (f64 grid steps from the exact value)".to_owned(),
+        x_scale: Scale::Log,
+        y_scale: Scale::Log,
+        markers: sets,
+        legend: Some(legend),
+        ..Figure::default()
+    };
+    std::fs::write(path, figure.render()).expect("write svg");
+}
+
+/// The plot's points from the table in `docs/accuracy.md` (between the report markers).
+fn table_points(doc: &str) -> Vec<PlotPoint> {
+    let (begin, end) = (
+        doc.find("<!-- report:begin -->")
+            .expect("report:begin in docs/accuracy.md"),
+        doc.find("<!-- report:end -->")
+            .expect("report:end in docs/accuracy.md"),
+    );
+    doc[begin..end]
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.trim().trim_matches('|').split('|').map(str::trim).collect();
+            let set = Set::from_name(cells.get(1)?)?;
+            Some(PlotPoint {
+                case: cells[0].to_owned(),
+                set,
+                method: cells[2].to_owned(),
+                median_ns: cells[3].parse().ok()?,
+                max_steps: cells[6].parse().ok()?,
+            })
+        })
+        .collect()
 }
 
 fn main() {
+    if std::env::args().any(|a| a == "--plot-only") {
+        let doc = std::fs::read_to_string("docs/accuracy.md").expect("read docs/accuracy.md");
+        let points = table_points(&doc);
+        assert!(!points.is_empty(), "no table rows in docs/accuracy.md");
+        plot(&points, "docs/accuracy.svg");
+        println!("docs/accuracy.svg: {} points from docs/accuracy.md", points.len());
+        return;
+    }
     let mut rows = Vec::new();
     for set in [Set::Typical, Set::Stress] {
         let n = if set == Set::Typical { 2000 } else { 600 };
@@ -533,7 +626,17 @@ fn main() {
         .expect("string");
     }
     print!("{table}");
-    plot(&rows, "docs/accuracy.svg");
+    let points: Vec<PlotPoint> = rows
+        .iter()
+        .map(|r| PlotPoint {
+            case: r.case.to_owned(),
+            set: r.set,
+            method: r.method.to_owned(),
+            median_ns: r.median_ns,
+            max_steps: r.max_steps,
+        })
+        .collect();
+    plot(&points, "docs/accuracy.svg");
     let doc = std::fs::read_to_string("docs/accuracy.md").unwrap_or_default();
     let (begin, end) = ("<!-- report:begin -->", "<!-- report:end -->");
     let updated = match (doc.find(begin), doc.find(end)) {

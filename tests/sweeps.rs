@@ -459,18 +459,101 @@ async fn svg_plots_the_first_output_with_one_series_per_second_axis_value() {
     assert_eq!(headers["content-type"], "image/svg+xml");
     let svg = String::from_utf8(bytes).unwrap();
     assert!(svg.starts_with("<svg"));
-    assert!(svg.contains("/velocity/tangential"));
-    assert!(svg.contains("/contact_velocity/final/tangential"));
-    for label in ["/friction = 0.1", "/friction = 0.123", "/friction = 0.2"] {
+    // Axes named in words, with the paper's symbol (its subscript a tspan) and the SI unit.
+    assert!(svg.contains(">tangential velocity v<tspan"), "{svg}");
+    assert!(
+        svg.contains(">final tangential contact velocity V<tspan"),
+        "{svg}"
+    );
+    assert!(
+        svg.contains(">ct</tspan><tspan dy=") && svg.contains("> (m/s)</tspan>"),
+        "{svg}"
+    );
+    assert!(
+        !svg.contains("/velocity/tangential") && !svg.contains("/contact_velocity"),
+        "no JSON pointers"
+    );
+    assert!(svg.contains("<title>") && svg.contains("<desc>"));
+    assert!(!svg.contains("style"), "presentation attributes only");
+    for label in [">f = 0.1<", ">f = 0.123<", ">f = 0.2<"] {
         assert!(svg.contains(label), "legend {label}");
     }
-    // Three series and their three legend marks.
-    assert_eq!(svg.matches(r#"stroke-width="2""#).count(), 6);
+    // Three series, each one path; their legend marks are three more.
+    assert_eq!(part(&svg, "curves").matches("<path ").count(), 3);
+    assert_eq!(part(&svg, "legend").matches(r#"stroke-width="2""#).count(), 3);
+    // Coordinates keep their decimals.
+    let curves = part(&svg, "curves");
+    assert!(curves.matches('.').count() > 3 * 61, "{curves}");
+    // Each friction switches from sliding to tangential restitution and back
+    // within the sweep: marked on its line, the switch named in the legend.
+    assert!(
+        part(&svg, "markers").matches("<path ").count() + part(&svg, "markers").matches("<rect ").count()
+            >= 6
+    );
+    assert!(svg.contains("regime switch: sliding → restitution"), "{svg}");
+    assert!(svg.contains("regime switch: restitution → sliding"), "{svg}");
     // A regime cannot be plotted.
     let mut body = two_axis_sweep();
     body["outputs"] = json!(["/regime"]);
     let (status, _, _) = app.post_accept("/v1/sweeps", "image/svg+xml", &body).await;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+}
+
+/// The body of the plot's `<g data-part="…">` group, nested groups included.
+fn part<'a>(svg: &'a str, name: &str) -> &'a str {
+    let open = format!(r#"<g data-part="{name}">"#);
+    let start = svg.find(&open).unwrap_or_else(|| panic!("no {name} in {svg}")) + open.len();
+    let rest = &svg[start..];
+    let mut depth = 0;
+    for (i, _) in rest.match_indices('<') {
+        if rest[i..].starts_with("<g ") || rest[i..].starts_with("<g>") {
+            depth += 1;
+        } else if rest[i..].starts_with("</g>") {
+            if depth == 0 {
+                return &rest[..i];
+            }
+            depth -= 1;
+        }
+    }
+    rest
+}
+
+#[tokio::test]
+async fn a_one_series_svg_plot_shades_each_regime_even_when_the_regime_is_not_asked_for() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let path = format!(
+        "{}/examples/figure2_coulomb_friction.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut body: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    body["outputs"] = json!(["/contact_velocity/final/tangential"]);
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "image/svg+xml", &body).await;
+    assert_eq!(status, StatusCode::OK);
+    let svg = String::from_utf8(bytes).unwrap();
+    // Maw's disc sticks up to v_t = (1 + e) μ_c |v_n| ≈ 0.712 m/s, then slides.
+    let bands = part(&svg, "bands");
+    assert_eq!(bands.matches("<rect ").count(), 2, "{bands}");
+    let sticking = bands.find(r#"data-label="sticking""#).expect("a sticking band");
+    let sliding = bands.find(r#"data-label="sliding""#).expect("a sliding band");
+    assert!(sticking < sliding, "sticking first, at low v_t");
+    assert!(
+        svg.contains(">regime: sticking<") && svg.contains(">regime: sliding<"),
+        "{svg}"
+    );
+    assert!(
+        svg.contains("Regimes: sticking from 0 to 0.715, sliding from 0.715 to 3."),
+        "{svg}"
+    );
+    // The plot still answers only what was asked in the other formats.
+    let table = json_table(&app, &body).await;
+    assert_eq!(
+        table["columns"],
+        json!([
+            "/velocity/tangential",
+            "/contact_velocity/final/tangential",
+            "error"
+        ])
+    );
 }
 
 /// Rows of a one-axis sweep from an example file: (axis value, first output, regime).

@@ -305,7 +305,8 @@ async fn respond<C: Case>(
     }
     let body = match format {
         Format::Svg => {
-            let plot = plot::Plot::check(&axis_names, &outputs, &sweep)?;
+            let axes: Vec<_> = sweep.axes().iter().map(|a| a.param).collect();
+            let plot = plot::Plot::check(&axes, sweep.case().columns(), &sweep)?;
             let sweep = Arc::new(sweep);
             let text = tokio::task::spawn_blocking(move || plot.render(&sweep))
                 .await

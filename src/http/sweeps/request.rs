@@ -321,7 +321,11 @@ pub(super) fn sweep<C: Case>(
 ) -> Result<Sweep<CaseSweep<C>>, ApiError> {
     let values = axis_values(&request.axes)?;
     let inputs = axis_inputs(&request.axes, &base)?;
-    let columns = output_columns(&base, request.outputs.as_deref())?;
+    let mut columns = output_columns(&base, request.outputs.as_deref())?;
+    // A plot shades or marks the regimes: computed alongside the plotted output.
+    if format == Format::Svg && !columns.contains(&Output::Regime) && base.answers(Output::Regime) {
+        columns.push(Output::Regime);
+    }
     let combine = match request.combine {
         CombineDto::Product => crate::sweep::Combine::Product,
         CombineDto::Zip => crate::sweep::Combine::Zip,
