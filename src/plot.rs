@@ -91,8 +91,10 @@ const PAD: f64 = 14.0;
 const TICK_LENGTH: f64 = 5.0;
 /// Widest legend label line before it wraps.
 const LEGEND_TEXT_MAX: f64 = 230.0;
-const GRID: Color = Color(224, 224, 224);
-const MINOR_GRID: Color = Color(242, 242, 242);
+/// Grid lines: black at these opacities, so they read as darker lines over a
+/// shaded band as over white (`#e0e0e0` and `#f2f2f2` on white).
+const GRID_OPACITY: &str = "0.12";
+const MINOR_GRID_OPACITY: &str = "0.05";
 const FRAME: Color = Color(68, 68, 68);
 
 /// How an axis maps values.
@@ -604,7 +606,7 @@ fn extent(values: impl Iterator<Item = f64>, scale: Scale) -> (f64, f64) {
             let pad = if hi > lo {
                 (hi - lo) * 0.05
             } else {
-                lo.abs().max(1.0) * 0.05
+                if lo == 0.0 { 0.05 } else { lo.abs() * 0.05 }
             };
             (lo - pad, hi + pad)
         }
@@ -1114,7 +1116,7 @@ impl Figure {
             candidates(self.y_scale, y_lo, y_hi),
             |_| TICK_SIZE * 1.1,
             TICK_SIZE * 0.9,
-            30.0,
+            36.0,
         );
         let y_title_text = match &y_ticks.factor {
             Some(f) => format!("{} {f}", self.y_name),
@@ -1220,28 +1222,26 @@ impl Figure {
         // Grid.
         out.push_str("<g data-part=\"grid\">\n");
         for (axis, ticks, vertical) in [(&x_axis, &x_ticks, true), (&y_axis, &y_ticks, false)] {
-            for (v, color) in ticks
+            for (v, opacity) in ticks
                 .minor
                 .iter()
-                .map(|v| (*v, MINOR_GRID))
-                .chain(ticks.major.iter().map(|(v, _)| (*v, GRID)))
+                .map(|v| (*v, MINOR_GRID_OPACITY))
+                .chain(ticks.major.iter().map(|(v, _)| (*v, GRID_OPACITY)))
             {
                 let p = num(axis.at(v));
                 let _ = if vertical {
                     writeln!(
                         out,
-                        r#"<line x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="{}" stroke-width="1"/>"#,
+                        r##"<line x1="{p}" y1="{}" x2="{p}" y2="{}" stroke="#000000" stroke-opacity="{opacity}" stroke-width="1"/>"##,
                         num(top),
                         num(bottom),
-                        color.hex()
                     )
                 } else {
                     writeln!(
                         out,
-                        r#"<line x1="{}" y1="{p}" x2="{}" y2="{p}" stroke="{}" stroke-width="1"/>"#,
+                        r##"<line x1="{}" y1="{p}" x2="{}" y2="{p}" stroke="#000000" stroke-opacity="{opacity}" stroke-width="1"/>"##,
                         num(left),
                         num(right),
-                        color.hex()
                     )
                 };
             }

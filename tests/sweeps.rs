@@ -556,6 +556,28 @@ async fn a_one_series_svg_plot_shades_each_regime_even_when_the_regime_is_not_as
     );
 }
 
+#[tokio::test]
+async fn an_svg_plot_of_a_logspace_axis_has_a_logarithmic_axis() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let body = json!({
+        "case": "tangential", "base": maw_base(),
+        "axes": [{"path": "/friction", "logspace": {"start": 0.01, "stop": 1.0, "count": 41}}],
+        "outputs": ["/energy/loss"]
+    });
+    let (status, _, bytes) = app.post_accept("/v1/sweeps", "image/svg+xml", &body).await;
+    assert_eq!(status, StatusCode::OK);
+    let svg = String::from_utf8(bytes).unwrap();
+    let ticks = part(&svg, "x-ticks");
+    for label in [">0.01<", ">0.1<", ">1<"] {
+        assert!(ticks.contains(label), "{label} in {ticks}");
+    }
+    assert!(svg.contains(">friction coefficient f (dimensionless)<"), "{svg}");
+    assert!(
+        svg.contains(">energy loss T<tspan") && svg.contains("> (J)</tspan>"),
+        "{svg}"
+    );
+}
+
 /// Rows of a one-axis sweep from an example file: (axis value, first output, regime).
 async fn example(app: &TestApp, file: &str) -> Vec<(f64, f64, String)> {
     let path = format!("{}/examples/{file}", env!("CARGO_MANIFEST_DIR"));

@@ -10,9 +10,11 @@
 use axum::http::StatusCode;
 
 use crate::http::problem::ApiError;
-use crate::plot::{Band, Color, Curve, Figure, LegendEntry, Line, Marker, Markers, PALETTE, Shape, TEXT};
+use crate::plot::{
+    Band, Color, Curve, Figure, LegendEntry, Line, Marker, Markers, PALETTE, Scale, Shape, TEXT,
+};
 use crate::quantity::{DIMENSIONLESS, Input, Output};
-use crate::sweep::{Cell, Combine, Sweep, SweepCase};
+use crate::sweep::{AxisValues, Cell, Combine, Sweep, SweepCase};
 
 /// Most series a plot draws.
 const MAX_SERIES: u64 = 64;
@@ -23,6 +25,8 @@ const CHUNK_POINTS: u64 = 4096;
 #[derive(Debug, Clone)]
 pub struct Plot {
     x: Input,
+    /// Logarithmic when the first axis is a `logspace`.
+    x_scale: Scale,
     y: Output,
     /// The regime's column, when the sweep computes one.
     regime: Option<usize>,
@@ -77,8 +81,13 @@ impl Plot {
             )
             .at("/axes"));
         }
+        let x_scale = match sweep.axes().first().map(|a| &a.values) {
+            Some(AxisValues::Logspace { .. }) => Scale::Log,
+            _ => Scale::Linear,
+        };
         Ok(Plot {
             x: axes[0],
+            x_scale,
             y,
             regime: outputs.iter().position(|&o| o == Output::Regime),
             other_axes: if sweep.combine() == Combine::Product {
@@ -240,6 +249,7 @@ impl Plot {
             description,
             x_name,
             y_name,
+            x_scale: self.x_scale,
             curves,
             markers,
             bands,
