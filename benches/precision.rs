@@ -1,7 +1,8 @@
 //! Time per solve of each method on one typical non-central impact (Coulomb
 //! friction, every output): the fast closed forms, the nalgebra 3×3 LU solve,
 //! the adaptive exact mode and the pure rational evaluation; then the general
-//! planar contact (world axes) against a barrier and between two bodies.
+//! planar contact (world axes) against a barrier and between two bodies;
+//! the contact in space (fast, exact, and its last exact stage alone).
 //!
 //! `cargo bench --bench precision`. The errors, and times over whole typical
 //! and stress sets, come from `cargo run --release --example accuracy_report`
@@ -143,6 +144,20 @@ fn spatial(c: &mut Criterion) {
         });
         group.bench_function(format!("{name}_exact"), |b| {
             b.iter(|| solve(black_box(&impact), Outputs::ALL, Precision::Exact))
+        });
+    }
+    group.finish();
+    // The last exact stage alone (exact fractions with one square root, Ziv
+    // rounding): what an `exact` answer costs when no earlier stage certifies it.
+    let mut group = c.benchmark_group("spatial_contact_last_stage_alone");
+    group.sample_size(10);
+    for (name, impact) in [
+        ("barrier", space(false, false)),
+        ("two_bodies", space(true, false)),
+        ("two_bodies_twist", space(true, true)),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| solve_in(black_box(&impact), Outputs::ALL, Arithmetic::Rational))
         });
     }
     group.finish();

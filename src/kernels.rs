@@ -11,10 +11,10 @@
 //! compiler-builtins' software fma on the portable path, which is what makes
 //! that path slower). `tests/kernels.rs` runs both and compares the bytes.
 //!
-//! [`run`] is the only door: it wraps a closure whose body is inlined into
+//! `run` is the only door: it wraps a closure whose body is inlined into
 //! the x86-64-v3 copy. The solver's hot functions are `#[inline]`, so what a
 //! sweep chunk or one solve calls is compiled into that copy; the stages of
-//! the exact evaluation are out of line and pass through [`run`] again.
+//! the exact evaluation are out of line and pass through `run` again.
 #![allow(unsafe_code)]
 
 use std::sync::atomic::{AtomicU8, Ordering};
