@@ -9,14 +9,11 @@ use std::process::Command;
 
 use serde_json::{Value, json};
 
-fn sweep_with(kernels: &str, request: &Value) -> Vec<u8> {
-    let dir = std::env::temp_dir().join(format!("restitution-kernels-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{:x}.json", fxhash(request.to_string().as_bytes())));
-    std::fs::write(&path, request.to_string()).unwrap();
+/// The CSV of the sweep in `path` with `kernels`.
+fn sweep_with(kernels: &str, path: &std::path::Path) -> Vec<u8> {
     let out = Command::new(env!("CARGO_BIN_EXE_restitution"))
         .args(["sweep", "--kernels", kernels, "--format", "csv", "--request"])
-        .arg(&path)
+        .arg(path)
         .output()
         .unwrap();
     assert!(
@@ -25,13 +22,6 @@ fn sweep_with(kernels: &str, request: &Value) -> Vec<u8> {
         String::from_utf8_lossy(&out.stderr)
     );
     out.stdout
-}
-
-/// A file name per request (FNV-1a).
-fn fxhash(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
-    })
 }
 
 fn requests() -> Vec<Value> {
@@ -87,9 +77,13 @@ fn requests() -> Vec<Value> {
 
 #[test]
 fn both_kernels_give_the_same_bytes() {
-    for request in requests() {
-        let auto = sweep_with("auto", &request);
-        let portable = sweep_with("portable", &request);
+    let dir = std::env::temp_dir().join(format!("restitution-kernels-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (i, request) in requests().into_iter().enumerate() {
+        let path = dir.join(format!("{i}.json"));
+        std::fs::write(&path, request.to_string()).unwrap();
+        let auto = sweep_with("auto", &path);
+        let portable = sweep_with("portable", &path);
         let rows = auto.iter().filter(|&&b| b == b'\n').count();
         assert!(rows > 100, "{request}: only {rows} lines");
         assert!(auto == portable, "{request}: the kernels disagree");
