@@ -47,19 +47,19 @@
 use std::cmp::Ordering;
 
 /// Unit roundoff `u = 2⁻⁵³`.
-const U: f64 = f64::EPSILON / 2.0;
+pub(super) const U: f64 = f64::EPSILON / 2.0;
 /// `u²`.
 const U2: f64 = U * U;
 /// Every non-zero `M` is at least this (2⁻⁹⁰⁰): see the module documentation.
-const FLOOR: f64 = f64::from_bits((1023 - 900) << 52);
+pub(super) const FLOOR: f64 = f64::from_bits((1023 - 900) << 52);
 /// 2⁹⁰⁰, the reciprocal of [`FLOOR`].
 const ZERO_OR_LARGE: f64 = f64::from_bits((1023 + 900) << 52);
 /// The least `|q|` of a certified quotient that is not exactly zero (2⁻⁹⁰⁰).
 const QUOTIENT_MIN: f64 = FLOOR;
 /// The most `λ` may reach where a decision is made (2¹⁶).
-const LAMBDA_MAX: f64 = (1u64 << 16) as f64;
+pub(super) const LAMBDA_MAX: f64 = (1u64 << 16) as f64;
 /// Covers the roundings of `M` along a path (fewer than 4096 of them).
-const M_GROWTH: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
+pub(super) const M_GROWTH: f64 = 1.0 + 1.0 / (1u64 << 40) as f64;
 /// The exponent field of an f64.
 const EXPONENT_BITS: u64 = 0x7ff0_0000_0000_0000;
 /// The fraction field of an f64.
@@ -67,7 +67,7 @@ const MANTISSA_BITS: u64 = (1 << 52) - 1;
 
 /// `m` raised to [`FLOOR`] (a NaN stays a NaN).
 #[inline(always)]
-fn floored(m: f64) -> f64 {
+pub(super) fn floored(m: f64) -> f64 {
     if m < FLOOR { FLOOR } else { m }
 }
 
@@ -75,7 +75,7 @@ fn floored(m: f64) -> f64 {
 /// exact zero times anything finite is an exact zero), without a branch:
 /// `min(M_x, M_y) 2⁹⁰⁰` is 0 for a zero factor and at least 1 otherwise.
 #[inline(always)]
-fn product_magnitude(mx: f64, my: f64) -> f64 {
+pub(super) fn product_magnitude(mx: f64, my: f64) -> f64 {
     let floor = min(FLOOR, min(mx, my) * ZERO_OR_LARGE);
     max(mx * my, floor)
 }
@@ -86,13 +86,13 @@ fn product_magnitude(mx: f64, my: f64) -> f64 {
 /// or from `0 · ∞` between an exact zero and an overflowed `M`, whose product
 /// is the exact zero it is taken for.
 #[inline(always)]
-fn max(a: f64, b: f64) -> f64 {
+pub(super) fn max(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
 /// The smaller of `a` and `b`, `b` if either is a NaN; see [`max`].
 #[inline(always)]
-fn min(a: f64, b: f64) -> f64 {
+pub(super) fn min(a: f64, b: f64) -> f64 {
     if a < b { a } else { b }
 }
 

@@ -12,6 +12,7 @@ use num_traits::{One, Signed, Zero};
 
 use super::bounded::Bounded;
 use super::compensated::{Compensated, Unsettled};
+use super::filtered::{Filtered, Uncertain};
 
 /// A number the exact model can be evaluated in.
 pub(crate) trait Field: Clone {
@@ -151,6 +152,70 @@ impl Field for Compensated {
     }
     fn approx(&self) -> f64 {
         Self::approx(self)
+    }
+}
+
+impl Field for Filtered {
+    type Undecided = Uncertain;
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        Self::exact(x)
+    }
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        Self::add(self, o)
+    }
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        Self::sub(self, o)
+    }
+    #[inline(always)]
+    fn mul(&self, o: &Self) -> Self {
+        Self::mul(self, o)
+    }
+    #[inline(always)]
+    fn mul_add(&self, b: &Self, c: &Self) -> Self {
+        Self::mul_add(self, b, c)
+    }
+    #[inline(always)]
+    fn div(&self, o: &Self) -> Self {
+        Self::div(self, o)
+    }
+    #[inline(always)]
+    fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
+        debug_assert_eq!(rounded.to_bits(), (num / den).to_bits());
+        Self::quotient_of(num, rounded)
+    }
+    #[inline(always)]
+    fn neg(&self) -> Self {
+        Self::neg(self)
+    }
+    #[inline(always)]
+    fn sign(&self) -> Result<Ordering, Uncertain> {
+        Self::sign(self)
+    }
+    /// The f64 value itself (`fast` outputs are not rounded again), with a
+    /// zero written `+0.0`.
+    #[inline(always)]
+    fn round(&self) -> Result<f64, Uncertain> {
+        let h = self.value();
+        if h.is_finite() {
+            Ok(h + 0.0)
+        } else {
+            Err(Uncertain::Range)
+        }
+    }
+    #[inline(always)]
+    fn round_times_sqrt(&self, y: &Self) -> Result<f64, Uncertain> {
+        let v = self.value() * y.value().sqrt();
+        if v.is_finite() {
+            Ok(v + 0.0)
+        } else {
+            Err(Uncertain::Range)
+        }
+    }
+    fn approx(&self) -> f64 {
+        self.value()
     }
 }
 

@@ -1,9 +1,12 @@
 //! The arithmetics the impact model ([`crate::model`]) is evaluated in, one
 //! [`Field`] each:
 //!
-//! - `f64` (`fast` precision): plain doubles, fused where a form asks for it;
-//!   undecided only when a value leaves the f64 range (the caller then
-//!   answers in exact arithmetic instead);
+//! - [`Filtered`] (`filtered.rs`, `fast` precision): plain doubles, fused where
+//!   a form asks for it, each with a static error bound that every decision
+//!   is checked against (the caller answers in exact arithmetic where one is
+//!   too close to call, or a value leaves the f64 range);
+//! - `f64`: the same doubles without the bound, deciding as f64 does (tests
+//!   of the f64 forms over wide magnitudes, and fits);
 //! - [`Compensated`] (`compensated.rs`): the plain f64 evaluation and its
 //!   rounding errors, gathered by error-free transformations, with a static
 //!   error bound (answers every typical input in `exact` precision);
@@ -22,9 +25,11 @@
 mod bounded;
 mod compensated;
 mod field;
+mod filtered;
 mod surd;
 
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, Fraction, OutOfRange, Undecided};
+pub(crate) use filtered::{Filtered, Uncertain};
 pub(crate) use surd::{Radical, Surd};

@@ -259,6 +259,13 @@ impl Radical for f64 {
     }
 }
 
+impl Radical for super::Filtered {
+    #[inline(always)]
+    fn sqrt(&self) -> Result<Self, super::Uncertain> {
+        super::Filtered::sqrt(self)
+    }
+}
+
 impl Radical for super::Compensated {
     fn sqrt(&self) -> Result<Self, super::Unsettled> {
         Err(super::Unsettled::Root)

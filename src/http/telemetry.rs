@@ -244,6 +244,13 @@ impl Telemetry {
             "Impacts settled by each stage of the adaptive exact evaluation, since start",
             settled,
         );
+        let escalated = Counter::<u64>::default();
+        escalated.inc_by(crate::impact::fast_decisions_escalated());
+        stages.register(
+            "fast_escalated",
+            "Fast answers sent to the exact evaluation because a decision was too close to its tie for the f64 error bound, since start",
+            escalated,
+        );
         let _ = prometheus_client::encoding::text::encode_registry(&mut text, &self.0.registry);
         let _ = prometheus_client::encoding::text::encode_registry(&mut text, &stages);
         let _ = prometheus_client::encoding::text::encode_eof(&mut text);

@@ -3,10 +3,13 @@
 //! range, evaluates the model (`src/model/`) in the chosen precision and
 //! escalates to exact arithmetic where the fast one cannot answer.
 //!
-//! - `fast` precision evaluates the model in plain `f64`. Inputs outside
-//!   2^±200 ([`in_fast_range`]) and answers whose evaluation leaves the f64
-//!   range (an output that overflows, a sign that is NaN) are answered by the
-//!   exact evaluation instead, which neither overflows nor underflows in between.
+//! - `fast` precision evaluates the model in plain `f64`, every value carrying
+//!   a static error bound that each decision is checked against
+//!   ([`Filtered`]): a decision is the exact one, or too close to its tie to
+//!   tell, and then the impact is answered by the exact evaluation. Inputs
+//!   outside 2^±200 ([`in_fast_range`]) and answers whose evaluation leaves
+//!   the f64 range (an output that overflows, a sign that is NaN) are answered
+//!   by the exact evaluation too, which neither overflows nor underflows.
 //! - `exact` precision: every numeric output is the correctly rounded f64 of
 //!   the model's exact value for the given f64 inputs, and every regime
 //!   decision and refusal is the exact one. Adaptive precision in the manner
@@ -34,7 +37,9 @@ pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
 pub use self::planar::{Law, PlanarBody, PlanarImpact};
 pub use self::spatial::{RigidBody, SpatialContact, SpatialImpact, Twist};
 pub use self::torsional::TorsionalImpact;
-use crate::arith::{Bounded, Compensated, OutOfRange, Radical, Surd, Undecided, Unsettled};
+use crate::arith::{
+    Bounded, Compensated, Filtered, OutOfRange, Radical, Surd, Uncertain, Undecided, Unsettled,
+};
 use crate::error::{Input, Output, Result};
 use crate::model::{Exact, Fail};
 use crate::outcome::Outputs;
@@ -65,13 +70,14 @@ impl Precision {
 /// comparisons, tests and benchmarks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Arithmetic {
-    /// `fast` precision: f64 inside the fast range, else exact.
+    /// `fast` precision: f64 with exact decisions inside the fast range, else exact.
     Fast,
     /// `exact` precision: the adaptive stages.
     Exact,
-    /// The f64 evaluation whatever the inputs' range (no range check), exact
-    /// only where the f64 evaluation leaves the f64 range: what tests of the
-    /// f64 forms over wide magnitudes measure.
+    /// The f64 evaluation whatever the inputs' range (no range check), its
+    /// decisions taken as f64 takes them (no error bound), exact only where
+    /// the f64 evaluation leaves the f64 range: what tests of the f64 forms
+    /// over wide magnitudes measure.
     Plain,
     /// Exact fractions alone (no earlier stage).
     Rational,
@@ -281,7 +287,7 @@ pub(crate) fn evaluate<T>(
 ) -> (Result<()>, Stage) {
     match arithmetic {
         Arithmetic::Fast if in_range => fast_or_exact(&model, out),
-        Arithmetic::Plain => fast_or_exact(&model, out),
+        Arithmetic::Plain => plain_or_exact(&model, out),
         Arithmetic::Fast | Arithmetic::Exact => adaptive(&model, out),
         Arithmetic::Rational => rational(&model, out),
     }
@@ -303,18 +309,43 @@ fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
     )
 }
 
-/// The f64 answer, or the exact one where the f64 evaluation leaves the f64
-/// range (an output that overflows, a decision on an infinity or a NaN) or
-/// refuses the impact.
+/// The f64 answer, or the exact one where a decision of the f64 evaluation
+/// is within its error bound of a tie (or the evaluation leaves the f64
+/// range: an output that overflows, a decision on an infinity or a NaN) or
+/// refuses the impact. Every decision of a `fast` answer is the exact one.
 #[inline(always)]
 fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+    match model.run::<Filtered>(out) {
+        Ok(()) => (Ok(()), Stage::Fast),
+        Err(Fail::Undecided(Uncertain::Close)) => {
+            FAST_ESCALATED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            adaptive(model, out)
+        }
+        // A refusal of the model is rare and final: the exact stages confirm
+        // it and give its payload exactly.
+        Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => adaptive(model, out),
+    }
+}
+
+/// The f64 answer with the decisions f64 takes (no error bound), or the exact
+/// one where the evaluation leaves the f64 range or refuses.
+#[inline(always)]
+fn plain_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     match model.run::<f64>(out) {
         Ok(()) => (Ok(()), Stage::Fast),
-        // A refusal of the model is rare and final: the exact stages confirm
-        // it (an elastic answer whose exact loss is 0 is not refused for an
-        // f64 rounding of it above 0).
         Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, out),
     }
+}
+
+/// `fast` answers sent to the exact stages because a decision was within its
+/// error bound of a tie, since the process started.
+static FAST_ESCALATED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// How many `fast` answers were sent to the exact stages because a decision
+/// (a regime, a branch, a refusal) was too close to its tie for the f64
+/// error bound, since the process started.
+pub fn fast_decisions_escalated() -> u64 {
+    FAST_ESCALATED.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// The model of one validated impact, ready to run in any field.

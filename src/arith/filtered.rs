@@ -1,0 +1,445 @@
+//! The `fast` precision's arithmetic: plain f64 values, each carrying a static
+//! error bound so that every decision the model takes on them is the exact
+//! one or is reported undecided (a filter, as in Shewchuk's adaptive
+//! predicates). An undecided decision sends the whole impact to the exact
+//! stages ([`crate::impact`]); a decided one costs a comparison.
+//!
+//! A [`Filtered`] `(h, M, λ)` holds `h`, the value exactly as the plain f64
+//! evaluation forms it (the same operations, the same fused multiply-adds and
+//! quotients, so `fast` outputs are the bits they were without the filter),
+//! `M`, an upper bound of the exact value's magnitude built like the value
+//! with every term taken positive (a quotient's is the condition-weighted
+//! `(M_x + |q| M_y) / |y|_low`, a root's `M_x / √x_low`), and a small number
+//! `λ` that depends only on the shape of the computation. For the exact value
+//! `x` of the same expression in the inputs, and `u = 2⁻⁵³`:
+//!
+//! - (F1) `|x| ≤ M`,
+//! - (F2) `|x − h| ≤ λ u M`,
+//!
+//! each up to the slack described below. Each operation's rule (at the
+//! operation) derives its `λ` from its operands'. `M` and `λ` are dead where no
+//! decision reads them: an output that is only rounded costs what it cost in
+//! plain f64, and the compiler drops the bookkeeping for it.
+//!
+//! Slack. The rules drop second-order terms of relative size `λ u ≤ 2⁻³⁷`
+//! (`λ ≤` [`LAMBDA_MAX`] `= 2¹⁶` is checked where a decision is made; `λ` only
+//! grows, so every step before obeyed it too) and `M` is itself rounded to
+//! nearest, at most a few times per step and fewer than 4096 times along any
+//! path of the model: together far less than the factor `1 + 2⁻¹⁰` applied to
+//! the bound where a decision is made. As in the compensated stage, every
+//! non-zero `M` is at least 2⁻⁹⁰⁰ ([`floored`]), so a rounding in the subnormal
+//! range (at most 2⁻¹⁰⁷⁵ absolute) is far below `u M`; `M = 0` means the value
+//! is exactly zero with `h = 0`. Overflow leaves an infinity or NaN in `h`,
+//! `M` or `λ`, and then nothing is decided.
+
+use std::cmp::Ordering;
+
+use super::compensated::{FLOOR, LAMBDA_MAX, M_GROWTH, U, floored, max, product_magnitude};
+
+/// The factor applied to `λ u M` where a decision is made: covers the rules'
+/// dropped second-order terms and the roundings of `M` (module documentation).
+const SLACK: f64 = (1.0 + 1.0 / 1024.0) * M_GROWTH;
+
+/// `1 + 2u`, rounded up: `|x| ≤ |h| (1 + 2u)` for a correctly rounded `h` of `x`.
+const ONE_PLUS_2U: f64 = 1.0 + 4.0 * U;
+
+/// Why a decision in `fast` precision was left to the exact stages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Uncertain {
+    /// The value left the f64 range (an infinity or a NaN on the way), a
+    /// quotient's divisor or a root's radicand was too uncertain, or `λ` passed
+    /// its limit.
+    Range,
+    /// The value lies within its error bound of zero: its sign is the exact
+    /// stages' to decide.
+    Close,
+}
+
+/// An f64 value with its static error bound; see the module documentation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Filtered {
+    /// The plain f64 evaluation.
+    h: f64,
+    /// `M`: an upper bound of the exact value's magnitude.
+    m: f64,
+    /// `λ` in (F2).
+    lambda: f64,
+}
+
+impl Filtered {
+    /// An f64 input, exactly (`λ = 0`).
+    #[inline(always)]
+    pub(crate) fn exact(x: f64) -> Self {
+        Filtered {
+            h: x,
+            m: if x == 0.0 { 0.0 } else { floored(x.abs()) },
+            lambda: 0.0,
+        }
+    }
+
+    /// `h` with a bound that decides nothing (but an f64 output is still `h`).
+    #[inline(always)]
+    fn unknown(h: f64) -> Self {
+        Filtered {
+            h,
+            m: f64::INFINITY,
+            lambda: f64::INFINITY,
+        }
+    }
+
+    /// The plain f64 value.
+    #[inline(always)]
+    pub(crate) fn value(&self) -> f64 {
+        self.h
+    }
+
+    /// One correctly rounded operation on exact operands whose result `h`
+    /// is normal or exactly zero-free of underflow: `|x − h| ≤ u |x|` and
+    /// `|x| ≤ |h| (1 + 2u)`, so `M = |h| (1 + 2u)` with `λ = 1`, which decides
+    /// the sign of every such value (zero only when `x` is).
+    #[inline(always)]
+    fn rounded_once(h: f64) -> Self {
+        if h == 0.0 {
+            Filtered {
+                h,
+                m: 0.0,
+                lambda: 0.0,
+            }
+        } else {
+            Filtered {
+                h,
+                m: floored(h.abs() * ONE_PLUS_2U),
+                lambda: 1.0,
+            }
+        }
+    }
+
+    /// The sum. `|x − h| ≤ E_x + E_y + u |h_x + h_y|` with
+    /// `|h_x + h_y| ≤ M (1 + λu)`, `M = M_x + M_y`: `λ_s = max(λ_x, λ_y) + 1`.
+    /// Of two exact operands the sum is one rounding (and exact when it is zero
+    /// or subnormal): [`Self::rounded_once`].
+    #[inline(always)]
+    pub(crate) fn add(&self, o: &Self) -> Self {
+        let h = self.h + o.h;
+        if self.lambda == 0.0 && o.lambda == 0.0 {
+            return Self::rounded_once(h);
+        }
+        Filtered {
+            h,
+            m: self.m + o.m,
+            lambda: max(self.lambda, o.lambda) + 1.0,
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn neg(&self) -> Self {
+        Filtered { h: -self.h, ..*self }
+    }
+
+    #[inline(always)]
+    pub(crate) fn sub(&self, o: &Self) -> Self {
+        self.add(&o.neg())
+    }
+
+    /// The product. `|x y − h| ≤ |x| E_y + |h_y| E_x + u |h|` with
+    /// `|h_y| ≤ M_y (1 + λ_y u)` and `M = M_x M_y` (zero when a factor is an
+    /// exact zero): `λ_p = λ_x + λ_y + 1`.
+    #[inline(always)]
+    pub(crate) fn mul(&self, o: &Self) -> Self {
+        Filtered {
+            h: self.h * o.h,
+            m: product_magnitude(self.m, o.m),
+            lambda: self.lambda + o.lambda + 1.0,
+        }
+    }
+
+    /// `x y + z` with one rounding, as the f64 evaluation forms it.
+    /// `|x y + z − h| ≤ (λ_x + λ_y) u M_x M_y + λ_z u M_z + u |h|` to first
+    /// order, so with `M = M_x M_y + M_z`, `λ = max(λ_x + λ_y, λ_z) + 1`. Of
+    /// exact operands with a normal result it is one rounding:
+    /// [`Self::rounded_once`].
+    #[inline(always)]
+    pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
+        let h = self.h.mul_add(b.h, c.h);
+        if self.lambda == 0.0 && b.lambda == 0.0 && c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE {
+            return Self::rounded_once(h);
+        }
+        Filtered {
+            h,
+            m: product_magnitude(self.m, b.m) + c.m,
+            lambda: max(self.lambda + b.lambda, c.lambda) + 1.0,
+        }
+    }
+
+    /// The quotient `x / y`, `q = h_x / h_y` as f64 forms it. With
+    /// `|y| ≥ y_low = |h_y| − E_y` (at least `|h_y| / 2`, checked: else nothing
+    /// is decided), `|x/y − h_x/h_y| ≤ (E_x + |h_x/h_y| E_y) / y_low`, plus the
+    /// rounding `u |q|`. With `M_q = (M_x + |q| M_y) / y_low`, which is at least
+    /// `|x / y|`, `λ_q = max(λ_x, λ_y) + 2` (one for the rounding, one for the
+    /// difference between `|h_x/h_y|` and `|q|` and the roundings of `y_low`).
+    /// An exactly zero dividend gives an exact zero.
+    #[inline(always)]
+    pub(crate) fn div(&self, o: &Self) -> Self {
+        let q = self.h / o.h;
+        if self.m == 0.0 {
+            return Filtered {
+                h: q,
+                m: 0.0,
+                lambda: 0.0,
+            };
+        }
+        let error_y = o.lambda * U * o.m * SLACK;
+        let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
+        if !(y_low >= 0.5 * o.h.abs() && y_low > 0.0 && q.is_finite()) {
+            return Self::unknown(q);
+        }
+        Filtered {
+            h: q,
+            m: floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low),
+            lambda: max(self.lambda, o.lambda) + 2.0,
+        }
+    }
+
+    /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
+    /// one rounding of an exact value (or an exact zero).
+    #[inline(always)]
+    pub(crate) fn quotient_of(num: f64, rounded: f64) -> Self {
+        if num == 0.0 {
+            return Filtered {
+                h: rounded,
+                m: 0.0,
+                lambda: 0.0,
+            };
+        }
+        // A subnormal or underflowed quotient is off by at most 2⁻¹⁰⁷⁵, far
+        // below u M for the floored M.
+        Filtered {
+            h: rounded,
+            m: floored(rounded.abs() * ONE_PLUS_2U),
+            lambda: 1.0,
+        }
+    }
+
+    /// `√x` of a value whose exact value is decided non-negative: with
+    /// `x_low = h − E > 0`, `|√x − √h| ≤ E / (√x_low + √h)` and the rounding
+    /// `u √h`; `M = M_x / √x_low ≥ √M_x ≥ √x`, `λ = λ_x + 2`. An interval
+    /// reaching zero decides nothing ([`Uncertain::Close`]).
+    #[inline(always)]
+    pub(crate) fn sqrt(&self) -> Result<Self, Uncertain> {
+        let s = self.h.sqrt();
+        if self.m == 0.0 {
+            return Ok(Filtered {
+                h: s,
+                m: 0.0,
+                lambda: 0.0,
+            });
+        }
+        let low = (self.h - self.lambda * U * self.m * SLACK) * (1.0 - 4.0 * U);
+        if !(self.h.is_finite() && self.m.is_finite() && self.lambda <= LAMBDA_MAX) {
+            return Err(Uncertain::Range);
+        }
+        // (A NaN `low` came from an infinite M, refused above.)
+        if low < FLOOR {
+            return Err(Uncertain::Close);
+        }
+        Ok(Filtered {
+            h: s,
+            m: floored(self.m * (1.0 + 4.0 * U) / (low.sqrt() * (1.0 - 4.0 * U))),
+            lambda: self.lambda + 2.0,
+        })
+    }
+
+    /// The exact value's sign, unless the bound cannot decide it.
+    #[inline(always)]
+    pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
+        let bound = self.lambda * U * self.m * SLACK;
+        if !(self.h.is_finite() && bound.is_finite() && self.lambda <= LAMBDA_MAX) {
+            return Err(Uncertain::Range);
+        }
+        if self.h.abs() > bound {
+            Ok(if self.h > 0.0 {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            })
+        } else if bound == 0.0 {
+            // λ = 0 (an input) or M = 0 (an exact zero): h is the exact value.
+            Ok(if self.h > 0.0 {
+                Ordering::Greater
+            } else if self.h < 0.0 {
+                Ordering::Less
+            } else {
+                Ordering::Equal
+            })
+        } else {
+            Err(Uncertain::Close)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+    use num_rational::BigRational;
+    use num_traits::{Signed, Zero};
+
+    fn of(x: f64) -> BigRational {
+        BigRational::from_float(x).unwrap()
+    }
+
+    /// Checks (F1) and (F2) of a computed value against its exact value.
+    fn holds(v: &Filtered, exact: &BigRational, what: &str) {
+        if !(v.h.is_finite() && v.m.is_finite() && v.lambda.is_finite()) {
+            return; // nothing decided
+        }
+        let m = of(v.m * SLACK);
+        assert!(exact.abs() <= m, "{what}: |x| > M: {v:?} {}", exact);
+        let error = (of(v.h) - exact).abs();
+        assert!(
+            error <= of(v.lambda * U * v.m * SLACK),
+            "{what}: |x − h| > λuM: {v:?}"
+        );
+        if v.m == 0.0 {
+            assert!(
+                exact.is_zero() && v.h == 0.0,
+                "{what}: M = 0 but not an exact zero"
+            );
+        }
+    }
+
+    /// A random value of magnitude up to `2^±span`, either sign.
+    fn draw(rng: &mut Rng, span: f64) -> f64 {
+        (rng.unit() - 0.5) * 2f64.powf((rng.unit() - 0.5) * 2.0 * span)
+    }
+
+    /// Random expression trees of sums, fused products, products, quotients
+    /// and roots, each node's bound and decided sign checked against exact
+    /// rationals, with values near cancellation (sums of a value and its
+    /// one-ulp neighbour's negation) and across ranges that reach the floor
+    /// and overflow; the plain f64 value is unchanged by the bookkeeping.
+    #[test]
+    fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
+        let mut rng = Rng::new(0xf11e);
+        let (mut decided, mut close, mut roots) = (0, 0, 0);
+        for case in 0..6_000 {
+            let span = [4.0, 60.0, 600.0][case % 3];
+            let mut pool: Vec<(Filtered, BigRational, f64)> = (0..4)
+                .map(|k| {
+                    let x = if k == 0 && case % 7 == 0 {
+                        0.0
+                    } else {
+                        draw(&mut rng, span)
+                    };
+                    (Filtered::exact(x), of(x), x)
+                })
+                .collect();
+            for step in 0..14 {
+                let pick = |rng: &mut Rng, n: usize| (rng.unit() * n as f64) as usize;
+                let (a, ea, fa) = pool[pick(&mut rng, pool.len())].clone();
+                let (b, eb, fb) = pool[pick(&mut rng, pool.len())].clone();
+                let (c, ec, fc) = pool[pick(&mut rng, pool.len())].clone();
+                let (v, exact, plain) = match (rng.unit() * 7.0) as u32 {
+                    0 => (a.add(&b), &ea + &eb, fa + fb),
+                    1 => (a.sub(&b), &ea - &eb, fa - fb),
+                    2 => (a.mul(&b), &ea * &eb, fa * fb),
+                    3 => (a.mul_add(&b, &c), &ea * &eb + &ec, fa.mul_add(fb, fc)),
+                    4 => {
+                        // A near-cancellation: x minus a neighbour of its f64 value.
+                        let near = Filtered::exact(fa.next_up());
+                        (a.sub(&near), &ea - of(fa.next_up()), fa - fa.next_up())
+                    }
+                    5 => {
+                        if eb.is_zero() {
+                            continue;
+                        }
+                        (a.div(&b), &ea / &eb, fa / fb)
+                    }
+                    _ => match a.abs_for_test().sqrt() {
+                        // (`abs_for_test` leaves an undecided value as it is.)
+                        Ok(r) if r.m.is_finite() && (r.m * SLACK).is_finite() => {
+                            roots += 1;
+                            // The exact root is irrational in general: check
+                            // the bound by squaring an enclosure.
+                            let x = ea.abs();
+                            let h = of(r.h);
+                            let e = of(r.lambda * U * r.m * SLACK);
+                            let (lo, hi) = (&h - &e, &h + &e);
+                            assert!(of(r.m * SLACK).pow(2) >= x, "case {case}: root M");
+                            assert!(
+                                (lo <= BigRational::zero() || &lo * &lo <= x) && &hi * &hi >= x,
+                                "case {case}: root bound {r:?}"
+                            );
+                            assert_eq!(r.h.to_bits(), a.abs_for_test().h.sqrt().to_bits());
+                            continue;
+                        }
+                        _ => continue,
+                    },
+                };
+                assert_eq!(
+                    v.h.to_bits(),
+                    plain.to_bits(),
+                    "case {case} step {step}: h is not f64's"
+                );
+                holds(&v, &exact, &format!("case {case} step {step}"));
+                match v.sign() {
+                    Ok(s) => {
+                        decided += 1;
+                        assert_eq!(
+                            s,
+                            exact.cmp(&BigRational::zero()),
+                            "case {case} step {step}: {v:?}"
+                        );
+                    }
+                    Err(Uncertain::Close) => close += 1,
+                    Err(Uncertain::Range) => {}
+                }
+                if v.h.is_finite() && v.m.is_finite() {
+                    pool.push((v, exact, plain));
+                }
+            }
+        }
+        assert!(
+            decided > 40_000 && close > 500 && roots > 2_000,
+            "{decided} {close} {roots}"
+        );
+    }
+
+    impl Filtered {
+        /// `|x|` of a value whose sign is decided (else itself).
+        fn abs_for_test(&self) -> Self {
+            match self.sign() {
+                Ok(Ordering::Less) => self.neg(),
+                _ => *self,
+            }
+        }
+    }
+
+    #[test]
+    fn exact_operations_on_inputs_decide_their_signs() {
+        let x = Filtered::exact(0.1);
+        // A sum of two inputs that cancels exactly is an exact zero.
+        assert_eq!(x.sub(&x).sign(), Ok(Ordering::Equal));
+        // One fused multiply-add of inputs: its sign is exact however small.
+        let (a, b) = (0.1f64, 3.0f64);
+        let c = -(a * b);
+        let v = Filtered::exact(a).mul_add(&Filtered::exact(b), &Filtered::exact(c));
+        assert_eq!(
+            v.sign(),
+            Ok(if a.mul_add(b, c) > 0.0 {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            })
+        );
+        // A product with an exact zero is an exact zero.
+        let third = Filtered::exact(1.0).div(&Filtered::exact(3.0));
+        assert_eq!(Filtered::exact(0.0).mul(&third).sign(), Ok(Ordering::Equal));
+        // A rounded value minus its own rounding is not decided here.
+        let back = third.mul(&Filtered::exact(3.0)).sub(&Filtered::exact(1.0));
+        assert_eq!(back.sign(), Err(Uncertain::Close));
+        // Overflow decides nothing.
+        let big = Filtered::exact(1e300);
+        assert_eq!(big.mul(&big).sign(), Err(Uncertain::Range));
+    }
+}
