@@ -3,7 +3,9 @@
 //! Tests 4–6 (DEM reference curves). Datasets and the model (a sphere in the
 //! planar model, computed by the sweep engine) are in
 //! `tests/common/validation.rs`; the tables and plots in `docs/validation.md`
-//! come from `cargo run --release --example validation_report`.
+//! come from `cargo run --release --example validation_report`. Kharaz's
+//! impact is also solved through the spatial model (a sphere in space, as is
+//! and turned to arbitrary orientations) and must give the planar answers.
 //!
 //! Bounds. Where the model slides, it and every source share Coulomb's law,
 //! so the deviations there should be digitization scatter. That scatter is
@@ -416,7 +418,7 @@ fn kharaz_through_the_spatial_endpoint_is_the_planar_answer_bit_for_bit() {
             }
         }
     }
-    // Both branches of the bilinear law are crossed, in every variant's curves.
+    // Both branches of the bilinear law are crossed.
     assert_eq!(
         regimes.into_iter().collect::<Vec<_>>(),
         ["restitution", "sliding"]
