@@ -3,7 +3,9 @@
 //! Tests 4–6 (DEM reference curves). Datasets and the model (a sphere in the
 //! planar model, computed by the sweep engine) are in
 //! `tests/common/validation.rs`; the tables and plots in `docs/validation.md`
-//! come from `cargo run --release --example validation_report`.
+//! come from `cargo run --release --example validation_report`. Kharaz's
+//! impact is also solved through the spatial model (a sphere in space, as is
+//! and turned to arbitrary orientations) and must give the planar answers.
 //!
 //! Bounds. Where the model slides, it and every source share Coulomb's law,
 //! so the deviations there should be digitization scatter. That scatter is
@@ -17,7 +19,8 @@
 
 mod common;
 
-use common::validation::{self, Dataset, Deviation, Point, Quantity};
+use common::validation::{self, Dataset, Deviation, Point, Quantity, Rotation};
+use restitution::{Outputs, PlanarOutcome, PlanarVelocity, Precision, SpatialOutcome, solve};
 
 fn digitization_scatter() -> f64 {
     validation::digitization_scatter().expect("Test 6 and Test 8 data")
@@ -223,4 +226,246 @@ fn chung_ooi_tests_4_and_6_show_what_one_e_t_cannot_follow() {
         "restitution",
     );
     assert!(bilinear.rms() < coulomb.rms(), "{bilinear:?} vs {coulomb:?}");
+}
+
+/// Kharaz's model variants as the report draws them: (a) `e_t = 0`, (b) and
+/// (c) `e_t` fitted to `V_t/v_t` over all incidences and at ≥ 5°, (d) `e_t`
+/// from the coefficient fit.
+fn kharaz_variants(d: &Dataset) -> Vec<f64> {
+    let fit = restitution::fit::tangential(&validation::kharaz_observations(d, 0.0)).expect("a fit");
+    vec![
+        0.0,
+        d.fit_et(f64::NEG_INFINITY),
+        d.fit_et(5.0),
+        fit.tangential_restitution.expect("non-sliding points").value,
+    ]
+}
+
+/// Incidences at which the Kharaz comparison evaluates the model: each data
+/// point's, and `curve_points` evenly spaced over each quantity's range (the
+/// report draws its curves through 241).
+fn kharaz_incidences(d: &Dataset, curve_points: usize) -> Vec<f64> {
+    let mut xs = Vec::new();
+    for quantity in d.quantities() {
+        let data: Vec<f64> = d
+            .of(quantity)
+            .flat_map(|s| s.points.iter().map(|p| p.x))
+            .collect();
+        let lo = data.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = data.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        xs.extend(data);
+        let last = (curve_points - 1) as f64;
+        xs.extend((0..curve_points).map(|i| lo + (hi - lo) * (i as f64 / last)));
+    }
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    xs
+}
+
+/// The scale each output is compared on in a rotated scene: the impact's
+/// own (rounding the inputs moves each output by a few `ε` of these, however
+/// small the output itself, e.g. the spin near normal incidence).
+#[derive(Debug, Clone, Copy)]
+struct Scales {
+    /// `|v|`, for velocities.
+    speed: f64,
+    /// `|v| / R`, for angular velocities.
+    spin: f64,
+    /// `m |v|`, for impulses.
+    impulse: f64,
+    /// The initial kinetic energy, for energies.
+    energy: f64,
+    /// `f`, for `|μ|`; `T_L*` is on `[0, 1]`.
+    ratio: f64,
+}
+
+/// The outputs the planar and the spatial answer share, as (name, planar,
+/// spatial, scale) in the planar frame: the spatial world vectors are turned
+/// back by `rotation` first.
+fn shared_outputs(
+    p: &PlanarOutcome,
+    s: &SpatialOutcome,
+    rotation: Option<&Rotation>,
+    k: Scales,
+) -> Vec<(&'static str, f64, f64, f64)> {
+    let back = |v: [f64; 3]| rotation.map_or(v, |r| validation::rotate_back(r, v));
+    let body = &s.bodies[0];
+    let (pe, se) = (p.energy.expect("energies"), s.energy.expect("energies"));
+    let mut rows = Vec::new();
+    let mut vector = |names: [&'static str; 3], planar: [f64; 3], world: [f64; 3], scale: f64| {
+        let v = back(world);
+        for i in 0..3 {
+            rows.push((names[i], planar[i], v[i], scale));
+        }
+    };
+    let (vf, cf, ci) = (
+        p.final_velocity,
+        p.contact_velocity.r#final,
+        p.contact_velocity.initial,
+    );
+    vector(
+        ["V_t", "V_y", "V_n"],
+        [vf.tangential, 0.0, vf.normal],
+        body.velocity,
+        k.speed,
+    );
+    vector(
+        ["Ω_x", "Ω", "Ω_z"],
+        [0.0, vf.angular, 0.0],
+        body.angular_velocity,
+        k.spin,
+    );
+    vector(
+        ["ΔV_t", "ΔV_y", "ΔV_n"],
+        [p.impulse.tangential, 0.0, p.impulse.normal],
+        body.velocity_change,
+        k.speed,
+    );
+    vector(
+        ["P_t", "P_y", "P_t along n"],
+        [p.impulse.tangential, 0.0, 0.0],
+        s.impulse.tangential,
+        k.impulse,
+    );
+    vector(
+        ["V_ct", "V_cy", "V_ct along n"],
+        [cf.tangential, 0.0, 0.0],
+        s.contact_velocity.r#final.tangential,
+        k.speed,
+    );
+    vector(
+        ["v_ct", "v_cy", "v_ct along n"],
+        [ci.tangential, 0.0, 0.0],
+        s.contact_velocity.initial.tangential,
+        k.speed,
+    );
+    rows.extend([
+        ("P_n", p.impulse.normal, s.impulse.normal, k.impulse),
+        ("V_cn", cf.normal, s.contact_velocity.r#final.normal, k.speed),
+        ("v_cn", ci.normal, s.contact_velocity.initial.normal, k.speed),
+        ("|μ|", p.impulse_ratio.abs(), s.impulse_ratio, k.ratio),
+        ("T_initial", pe.initial, se.initial, k.energy),
+        ("T_final", pe.r#final, se.r#final, k.energy),
+        ("T_L", pe.loss, se.loss, k.energy),
+        ("T_M", pe.max_loss, se.max_loss, k.energy),
+        ("T_L*", pe.normalized_loss, se.normalized_loss, 1.0),
+    ]);
+    rows
+}
+
+/// The scales of Kharaz's impact at initial velocities `v` (no spin, unit mass).
+fn scales(d: &Dataset, v: &PlanarVelocity) -> Scales {
+    let speed = v.normal.hypot(v.tangential);
+    Scales {
+        speed,
+        spin: speed / d.radius,
+        impulse: speed,
+        energy: 0.5 * speed * speed,
+        ratio: d.friction,
+    }
+}
+
+/// Kharaz through the spatial endpoint: every data point and every point of
+/// the model curves (a)–(d), solved as a sphere in space (the motion in the
+/// x–z plane, `n` along z, `I = 2/5 m R²` as a tensor), gives the planar
+/// answer bit for bit in exact precision, on every output the two share
+/// (final velocities and spin, velocity changes, impulses, contact-point
+/// velocities, `|μ|`, energies) and in the regime; and the spatial answer's
+/// quantities are the ones the tables and plots were drawn from.
+#[test]
+fn kharaz_through_the_spatial_endpoint_is_the_planar_answer_bit_for_bit() {
+    let d = validation::kharaz().expect("data");
+    let xs = kharaz_incidences(&d, 241);
+    assert!(xs.len() > 300, "{} incidences", xs.len());
+    let drive = d.drive(Quantity::CentroidRatio).0;
+    let mut regimes = std::collections::BTreeSet::new();
+    for et in kharaz_variants(&d) {
+        for &x in &xs {
+            let v = d.velocity(drive, x);
+            let p = solve(&d.planar(v, et), Outputs::ALL, Precision::Exact).expect("a planar answer");
+            let s = solve(&d.spatial(v, et, None), Outputs::ALL, Precision::Exact).expect("a spatial answer");
+            assert_eq!(p.regime, s.regime, "e_t = {et}, incidence {x}°");
+            regimes.insert(p.regime.as_str());
+            for (name, a, b, _) in shared_outputs(&p, &s, None, scales(&d, &v)) {
+                assert!(
+                    a.to_bits() == b.to_bits() || (a == 0.0 && b == 0.0),
+                    "{name}: planar {a:e}, spatial {b:e} at e_t = {et}, incidence {x}°"
+                );
+            }
+        }
+        // The tables' numbers (the sweep engine, fast precision) are the spatial answer's.
+        for quantity in d.quantities() {
+            for series in d.of(quantity) {
+                let at: Vec<f64> = series.points.iter().map(|p| p.x).collect();
+                for (&x, predicted) in at.iter().zip(d.predict(quantity, et, &at)) {
+                    let Some(predicted) = predicted else { continue };
+                    let v = d.velocity(drive, x);
+                    let s =
+                        solve(&d.spatial(v, et, None), Outputs::ALL, Precision::Exact).expect("an answer");
+                    let last = PlanarVelocity {
+                        normal: s.bodies[0].velocity[2],
+                        tangential: s.bodies[0].velocity[0],
+                        angular: s.bodies[0].angular_velocity[1],
+                    };
+                    let value = d.value(quantity, &v, &last, s.contact_velocity.r#final.tangential[0]);
+                    assert!(
+                        (value - predicted.value).abs() <= 1e-12 * predicted.value.abs().max(1.0),
+                        "{}: space {value}, sweep {} at e_t = {et}, incidence {x}°",
+                        quantity.name(),
+                        predicted.value
+                    );
+                }
+            }
+        }
+    }
+    // Both branches of the bilinear law are crossed.
+    assert_eq!(
+        regimes.into_iter().collect::<Vec<_>>(),
+        ["restitution", "sliding"]
+    );
+}
+
+/// The bound of [`kharaz_in_a_rotated_scene_is_the_planar_answer_to_a_few_ulps`],
+/// in units of `ε = 2⁻⁵²` of each output's [`Scales`]. Rounding the turned
+/// inputs (three-term sums, a few `ε` of `|v|`) and turning the answer back
+/// gave at most about 5 `ε` here (4 rotations, 241 curve points); 16 leaves room.
+const ROTATED_BOUND: f64 = 16.0;
+
+/// The same with the whole scene turned to an arbitrary orientation (one
+/// rotation per variant; velocities, spin, contact point, normal and the
+/// tensor `r I rᵀ` are turned, each input rounded): after turning the spatial
+/// vectors back, every shared output is within [`ROTATED_BOUND`] `ε` of the
+/// impact's own scale (speed `|v|`, spin `|v|/R`, impulse `m|v|`, initial
+/// energy, `f` for `|μ|`, 1 for `T_L*`), and the regime is the same. Exact
+/// precision, so the model adds no rounding of its own. Every data point, and
+/// the curves through 31 points each (exact solves of rounded inputs are slower).
+#[test]
+fn kharaz_in_a_rotated_scene_is_the_planar_answer_to_a_few_ulps() {
+    let d = validation::kharaz().expect("data");
+    let xs = kharaz_incidences(&d, 31);
+    let drive = d.drive(Quantity::CentroidRatio).0;
+    let quaternions = [
+        [0.3, -0.5, 0.7, 0.2],
+        [0.9, 0.1, -0.3, 0.6],
+        [-0.2, 0.8, 0.4, -0.5],
+        [0.5, 0.5, -0.6, -0.1],
+    ];
+    for (et, q) in kharaz_variants(&d).into_iter().zip(quaternions) {
+        let r = validation::rotation(q);
+        for &x in &xs {
+            let v = d.velocity(drive, x);
+            let p = solve(&d.planar(v, et), Outputs::ALL, Precision::Exact).expect("a planar answer");
+            let s =
+                solve(&d.spatial(v, et, Some(&r)), Outputs::ALL, Precision::Exact).expect("a spatial answer");
+            assert_eq!(p.regime, s.regime, "e_t = {et}, incidence {x}°");
+            for (name, a, b, scale) in shared_outputs(&p, &s, Some(&r), scales(&d, &v)) {
+                let error = (a - b).abs() / (f64::EPSILON * scale);
+                let error = if a == b { 0.0 } else { error };
+                assert!(
+                    error <= ROTATED_BOUND,
+                    "{name}: planar {a:e}, spatial {b:e} ({error:.1} ε of {scale:e}) at e_t = {et}, incidence {x}°"
+                );
+            }
+        }
+    }
 }

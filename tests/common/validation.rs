@@ -13,7 +13,10 @@
 use std::collections::BTreeMap;
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
-use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision};
+use restitution::{
+    Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision, RigidBody, SpatialContact,
+    SpatialImpact,
+};
 
 /// Where the data files are.
 pub const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
@@ -379,7 +382,7 @@ impl Dataset {
     }
 
     /// The initial velocities at abscissa `x` of `drive`.
-    fn velocity(&self, drive: Drive, x: f64) -> PlanarVelocity {
+    pub fn velocity(&self, drive: Drive, x: f64) -> PlanarVelocity {
         let k = self.friction * (1.0 + self.restitution) * 3.5;
         let spin = |vn: f64, vct: f64| PlanarVelocity {
             normal: -vn,
@@ -405,23 +408,47 @@ impl Dataset {
         }
     }
 
+    /// The bilinear law with this dataset's `e` and `f` and tangential
+    /// restitution `et` (`0`: Coulomb friction alone).
+    pub fn law(&self, et: f64) -> Law {
+        Law::TangentialRestitution {
+            restitution: self.restitution,
+            friction: self.friction,
+            tangential_restitution: et,
+        }
+    }
+
+    /// The planar impact the model curves evaluate at initial velocities
+    /// `velocity`: the sphere of unit mass, `I = 2/5 m R²`, `d_c = 0`, `d_d = R`.
+    pub fn planar(&self, velocity: PlanarVelocity, et: f64) -> PlanarImpact {
+        let mass = 1.0;
+        PlanarImpact::rigid(
+            mass,
+            0.4 * mass * self.radius * self.radius,
+            Contact::central(self.radius),
+            velocity,
+            self.law(et),
+        )
+    }
+
+    /// The same impact in space ([`sphere_in_space`]): the planar `t` along
+    /// world x, `n` along z, so `ω` (turning `n` toward `t`) is about y.
+    pub fn spatial(&self, velocity: PlanarVelocity, et: f64, rotation: Option<&Rotation>) -> SpatialImpact {
+        sphere_in_space(
+            self.radius,
+            self.law(et),
+            [velocity.tangential, 0.0, velocity.normal],
+            [0.0, velocity.angular, 0.0],
+            rotation,
+        )
+    }
+
     /// The model's `quantity` at each abscissa in `xs`, with tangential
     /// restitution `et` (`0`: Coulomb friction alone), computed by one zipped
     /// sweep over the initial velocities. `None` where the model has no answer
     /// or the quantity is undefined (`V_t / v_t` at normal incidence).
     pub fn predict(&self, quantity: Quantity, et: f64, xs: &[f64]) -> Vec<Option<Predicted>> {
-        let mass = 1.0;
-        let base = PlanarImpact::rigid(
-            mass,
-            0.4 * mass * self.radius * self.radius,
-            Contact::central(self.radius),
-            PlanarVelocity::default(),
-            Law::TangentialRestitution {
-                restitution: self.restitution,
-                friction: self.friction,
-                tangential_restitution: et,
-            },
-        );
+        let base = self.planar(PlanarVelocity::default(), et);
         let inputs = [
             Input::NormalVelocity,
             Input::TangentialVelocity,
@@ -465,23 +492,34 @@ impl Dataset {
                 Cell::Number(_) => "",
             };
             let v = velocities[row.index as usize];
-            let (vn_f, vt_f, w_f, vct_f) = (number(0), number(1), number(2), number(3));
-            let vct = v.tangential - self.radius * v.angular;
-            let value = match quantity {
-                Quantity::ReboundAngleCentroid => vt_f.atan2(vn_f).to_degrees(),
-                Quantity::ReboundAngleContactPoint => vct_f.atan2(vn_f).to_degrees(),
-                Quantity::CentroidRatio => vt_f / v.tangential,
-                Quantity::SpinMagnitude => w_f.abs(),
-                Quantity::RecoilOverFriction => vct_f / (self.friction * vn_f),
-                Quantity::SpinOverFriction => self.radius * w_f.abs() / (self.friction * v.normal.abs()),
-                Quantity::Beta => -vct_f / vct,
-                Quantity::RecoilOverRebound => vct_f / vn_f,
+            let last = PlanarVelocity {
+                normal: number(0),
+                tangential: number(1),
+                angular: number(2),
             };
+            let value = self.value(quantity, &v, &last, number(3));
             if value.is_finite() {
                 out[row.index as usize] = Some(Predicted { value, regime });
             }
         });
         out
+    }
+
+    /// `quantity` of an impact with initial velocities `v`, final velocities
+    /// `last` and final tangential contact-point velocity `vct_f`.
+    pub fn value(&self, quantity: Quantity, v: &PlanarVelocity, last: &PlanarVelocity, vct_f: f64) -> f64 {
+        let (vn_f, vt_f, w_f) = (last.normal, last.tangential, last.angular);
+        let vct = v.tangential - self.radius * v.angular;
+        match quantity {
+            Quantity::ReboundAngleCentroid => vt_f.atan2(vn_f).to_degrees(),
+            Quantity::ReboundAngleContactPoint => vct_f.atan2(vn_f).to_degrees(),
+            Quantity::CentroidRatio => vt_f / v.tangential,
+            Quantity::SpinMagnitude => w_f.abs(),
+            Quantity::RecoilOverFriction => vct_f / (self.friction * vn_f),
+            Quantity::SpinOverFriction => self.radius * w_f.abs() / (self.friction * v.normal.abs()),
+            Quantity::Beta => -vct_f / vct,
+            Quantity::RecoilOverRebound => vct_f / vn_f,
+        }
     }
 
     /// The series of one quantity.
@@ -547,6 +585,102 @@ impl Dataset {
             }
         }
         (a + b) / 2.0
+    }
+}
+
+/// A rotation matrix, by rows.
+pub type Rotation = [[f64; 3]; 3];
+
+/// The rotation of the unit quaternion along `q` (normalised here; rounds).
+pub fn rotation(q: [f64; 4]) -> Rotation {
+    let size = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let [w, x, y, z] = q.map(|c| c / size);
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+/// `r v`.
+pub fn rotate(r: &Rotation, v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
+}
+
+/// `rᵀ v`: back to the unrotated frame.
+pub fn rotate_back(r: &Rotation, v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| r[0][i] * v[0] + r[1][i] * v[1] + r[2][i] * v[2])
+}
+
+/// A solid sphere of radius `radius` and unit mass (`I = 2/5 m R²` as a
+/// tensor) against a fixed barrier in space: the centre at the origin, the
+/// contact point `R` below it and the normal along `+z`, with initial
+/// velocity `velocity` and angular velocity `angular` (world axes), under
+/// `law`. With `rotation`, the whole scene (velocities, contact point,
+/// normal, tensor `r I rᵀ`) is turned by it, each input rounded; without,
+/// the inputs are taken as they are.
+pub fn sphere_in_space(
+    radius: f64,
+    law: Law,
+    velocity: [f64; 3],
+    angular: [f64; 3],
+    rotation: Option<&Rotation>,
+) -> SpatialImpact {
+    let mass = 1.0;
+    let moment = 0.4 * mass * radius * radius;
+    let point = [0.0, 0.0, -radius];
+    let normal = [0.0, 0.0, 1.0];
+    let (velocity, angular, point, normal, inertia) = match rotation {
+        None => (
+            velocity,
+            angular,
+            point,
+            normal,
+            [moment, moment, moment, 0.0, 0.0, 0.0],
+        ),
+        Some(r) => {
+            // r diag(I) rᵀ, entry (i, j) = I Σ_k r_ik r_jk.
+            let entry = |i: usize, j: usize| moment * (0..3).map(|k| r[i][k] * r[j][k]).sum::<f64>();
+            (
+                rotate(r, velocity),
+                rotate(r, angular),
+                rotate(r, point),
+                rotate(r, normal),
+                [
+                    entry(0, 0),
+                    entry(1, 1),
+                    entry(2, 2),
+                    entry(0, 1),
+                    entry(0, 2),
+                    entry(1, 2),
+                ],
+            )
+        }
+    };
+    SpatialImpact {
+        a: RigidBody {
+            mass,
+            inertia,
+            position: [0.0; 3],
+            velocity,
+            angular_velocity: angular,
+        },
+        b: None,
+        contact: SpatialContact { point, normal },
+        law,
+        torsion: None,
     }
 }
 
