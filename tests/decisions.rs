@@ -112,11 +112,11 @@ fn check_switch<C: Decided>(base: &C, input: Input, lo: f64, hi: f64, tally: &mu
     // is near the exact one), keeping it only if exact arithmetic confirms
     // the switch inside; then bisect in exact arithmetic.
     let (mut a, mut b) = (key(lo), key(hi));
-    let plain_lo = at(lo, Arithmetic::Plain);
+    let plain_lo = at(lo, Arithmetic::Unfiltered);
     let (mut pa, mut pb) = (a, b);
     while pb - pa > 1 {
         let mid = pa + (pb - pa) / 2;
-        if at(from_key(mid), Arithmetic::Plain) == plain_lo {
+        if at(from_key(mid), Arithmetic::Unfiltered) == plain_lo {
             pa = mid;
         } else {
             pb = mid;
@@ -148,7 +148,7 @@ fn check_switch<C: Decided>(base: &C, input: Input, lo: f64, hi: f64, tally: &mu
             from_key(b)
         );
         tally.points += 1;
-        tally.plain_wrong += usize::from(decide(&impact, Arithmetic::Plain) != exact);
+        tally.plain_wrong += usize::from(decide(&impact, Arithmetic::Unfiltered) != exact);
     }
 }
 

@@ -12,7 +12,7 @@
 mod common;
 
 use common::Rng;
-use common::accuracy::{ALLOW_FLIP, BOUND_ULPS, Errors, Inputs, compare, kappa, random_inputs, refusal_kind};
+use common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, random_inputs, refusal_kind};
 use common::reference::{self as exact, Outcome, Refusal, q, ulps};
 use num_traits::Signed;
 
@@ -294,7 +294,6 @@ fn adversarial_boundaries_match_the_exact_reference() {
             exact::prescribed(&inp.exact(), e, mu),
         )
     });
-    ALLOW_FLIP.with(|flip| flip.set(true));
     run_case("f at and next to |μ_c|, central", 13, 1500, |rng, inp, _| {
         let central = Inputs {
             dc: 0.0,
@@ -319,5 +318,4 @@ fn adversarial_boundaries_match_the_exact_reference() {
         };
         (fast, exact::bilinear(&central.exact(), e, f, et, capped_name))
     });
-    ALLOW_FLIP.with(|flip| flip.set(false));
 }

@@ -400,7 +400,7 @@ impl Case for BodiesImpact {
                         .all(in_fast_range);
                 let arithmetic = match arithmetic {
                     // The f64 evaluation may only answer where its approach decision is certain.
-                    Arithmetic::Plain if !certain => Arithmetic::Exact,
+                    Arithmetic::Plain | Arithmetic::Unfiltered if !certain => Arithmetic::Exact,
                     other => other,
                 };
                 evaluate(

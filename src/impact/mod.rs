@@ -74,11 +74,13 @@ pub enum Arithmetic {
     Fast,
     /// `exact` precision: the adaptive stages.
     Exact,
-    /// The f64 evaluation whatever the inputs' range (no range check), its
-    /// decisions taken as f64 takes them (no error bound), exact only where
-    /// the f64 evaluation leaves the f64 range: what tests of the f64 forms
-    /// over wide magnitudes measure.
+    /// The `fast` evaluation whatever the inputs' range (no range check):
+    /// what tests of the f64 forms over wide magnitudes measure.
     Plain,
+    /// The same with every decision taken on the f64 value as it is (no
+    /// error bound, so a decision within rounding of its tie may go the
+    /// wrong way): what the filter of `fast` is measured against.
+    Unfiltered,
     /// Exact fractions alone (no earlier stage).
     Rational,
 }
@@ -87,7 +89,7 @@ impl Arithmetic {
     /// The stage that reports a refusal made before any arithmetic (input validation).
     pub(crate) fn validating_stage(self) -> Stage {
         match self {
-            Arithmetic::Fast | Arithmetic::Plain => Stage::Fast,
+            Arithmetic::Fast | Arithmetic::Plain | Arithmetic::Unfiltered => Stage::Fast,
             Arithmetic::Exact => Stage::Compensated,
             Arithmetic::Rational => Stage::Rational,
         }
@@ -287,7 +289,8 @@ pub(crate) fn evaluate<T>(
 ) -> (Result<()>, Stage) {
     match arithmetic {
         Arithmetic::Fast if in_range => fast_or_exact(&model, out),
-        Arithmetic::Plain => plain_or_exact(&model, out),
+        Arithmetic::Plain => fast_or_exact(&model, out),
+        Arithmetic::Unfiltered => unfiltered_or_exact(&model, out),
         Arithmetic::Fast | Arithmetic::Exact => adaptive(&model, out),
         Arithmetic::Rational => rational(&model, out),
     }
@@ -330,7 +333,7 @@ fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
 /// The f64 answer with the decisions f64 takes (no error bound), or the exact
 /// one where the evaluation leaves the f64 range or refuses.
 #[inline(always)]
-fn plain_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+fn unfiltered_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     match model.run::<f64>(out) {
         Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, out),

@@ -574,7 +574,7 @@ impl Case for SpatialImpact {
                         .chain(self.contact.normal)
                         .all(in_fast_range);
                 let arithmetic = match arithmetic {
-                    Arithmetic::Plain if !certain => Arithmetic::Exact,
+                    Arithmetic::Plain | Arithmetic::Unfiltered if !certain => Arithmetic::Exact,
                     other => other,
                 };
                 evaluate(

@@ -1,5 +1,6 @@
 //! The model's f64 evaluation over any magnitudes (`Arithmetic::Plain`: no
-//! range check; exact only where the f64 evaluation leaves the f64 range),
+//! range check, every decision exact as in `fast`; exact arithmetic where a
+//! decision is too close to call or the f64 evaluation leaves the f64 range),
 //! called per case: what the reference and paper tests measure.
 #![allow(dead_code)]
 
