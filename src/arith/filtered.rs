@@ -55,6 +55,18 @@ pub(crate) enum Uncertain {
     Close,
 }
 
+/// `(M, λ)` of `h`, one correct rounding of an exact value where no
+/// underflow lost bits (or the exact zero it then is): `|x| ≤ |h| (1 + 2u)`
+/// and `|x − h| ≤ u |x|`.
+#[inline(always)]
+fn once_rounded(h: f64) -> (f64, f64) {
+    if h == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (floored(h.abs() * ONE_PLUS_2U), 1.0)
+    }
+}
+
 /// An f64 value with its static error bound; see the module documentation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Filtered {
@@ -77,58 +89,29 @@ impl Filtered {
         }
     }
 
-    /// `h` with a bound that decides nothing (but an f64 output is still `h`).
-    #[inline(always)]
-    fn unknown(h: f64) -> Self {
-        Filtered {
-            h,
-            m: f64::INFINITY,
-            lambda: f64::INFINITY,
-        }
-    }
-
     /// The plain f64 value.
     #[inline(always)]
     pub(crate) fn value(&self) -> f64 {
         self.h
     }
 
-    /// One correctly rounded operation on exact operands whose result `h`
-    /// is normal or exactly zero-free of underflow: `|x − h| ≤ u |x|` and
-    /// `|x| ≤ |h| (1 + 2u)`, so `M = |h| (1 + 2u)` with `λ = 1`, which decides
-    /// the sign of every such value (zero only when `x` is).
-    #[inline(always)]
-    fn rounded_once(h: f64) -> Self {
-        if h == 0.0 {
-            Filtered {
-                h,
-                m: 0.0,
-                lambda: 0.0,
-            }
-        } else {
-            Filtered {
-                h,
-                m: floored(h.abs() * ONE_PLUS_2U),
-                lambda: 1.0,
-            }
-        }
-    }
-
     /// The sum. `|x − h| ≤ E_x + E_y + u |h_x + h_y|` with
     /// `|h_x + h_y| ≤ M (1 + λu)`, `M = M_x + M_y`: `λ_s = max(λ_x, λ_y) + 1`.
-    /// Of two exact operands the sum is one rounding (and exact when it is zero
-    /// or subnormal): [`Self::rounded_once`].
+    ///
+    /// Of two exact operands (`λ = 0`) the sum is one correct rounding, exact
+    /// when it is zero or subnormal: `M = |h| (1 + 2u)`, `λ = 1` (`0` for a zero),
+    /// which decides the sign of every such sum (a cancelled difference of two
+    /// inputs is an exact zero).
     #[inline(always)]
     pub(crate) fn add(&self, o: &Self) -> Self {
         let h = self.h + o.h;
-        if self.lambda == 0.0 && o.lambda == 0.0 {
-            return Self::rounded_once(h);
-        }
-        Filtered {
-            h,
-            m: self.m + o.m,
-            lambda: max(self.lambda, o.lambda) + 1.0,
-        }
+        // Selects rather than branches: the bookkeeping stays straight-line.
+        let (m, lambda) = if self.lambda + o.lambda == 0.0 {
+            once_rounded(h)
+        } else {
+            (self.m + o.m, max(self.lambda, o.lambda) + 1.0)
+        };
+        Filtered { h, m, lambda }
     }
 
     #[inline(always)]
@@ -155,20 +138,22 @@ impl Filtered {
 
     /// `x y + z` with one rounding, as the f64 evaluation forms it.
     /// `|x y + z − h| ≤ (λ_x + λ_y) u M_x M_y + λ_z u M_z + u |h|` to first
-    /// order, so with `M = M_x M_y + M_z`, `λ = max(λ_x + λ_y, λ_z) + 1`. Of
-    /// exact operands with a normal result it is one rounding:
-    /// [`Self::rounded_once`].
+    /// order, so with `M = M_x M_y + M_z`, `λ = max(λ_x + λ_y, λ_z) + 1`.
+    /// Of exact operands with a normal result it is one correct rounding:
+    /// `M = |h| (1 + 2u)`, `λ = 1`, which decides its sign however much cancels.
     #[inline(always)]
     pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
         let h = self.h.mul_add(b.h, c.h);
-        if self.lambda == 0.0 && b.lambda == 0.0 && c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE {
-            return Self::rounded_once(h);
-        }
-        Filtered {
-            h,
-            m: product_magnitude(self.m, b.m) + c.m,
-            lambda: max(self.lambda + b.lambda, c.lambda) + 1.0,
-        }
+        let exact = self.lambda + b.lambda + c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE;
+        let (m, lambda) = if exact {
+            once_rounded(h)
+        } else {
+            (
+                product_magnitude(self.m, b.m) + c.m,
+                max(self.lambda + b.lambda, c.lambda) + 1.0,
+            )
+        };
+        Filtered { h, m, lambda }
     }
 
     /// The quotient `x / y`, `q = h_x / h_y` as f64 forms it. With
@@ -181,42 +166,36 @@ impl Filtered {
     #[inline(always)]
     pub(crate) fn div(&self, o: &Self) -> Self {
         let q = self.h / o.h;
-        if self.m == 0.0 {
-            return Filtered {
-                h: q,
-                m: 0.0,
-                lambda: 0.0,
-            };
-        }
         let error_y = o.lambda * U * o.m * SLACK;
         let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
-        if !(y_low >= 0.5 * o.h.abs() && y_low > 0.0 && q.is_finite()) {
-            return Self::unknown(q);
-        }
-        Filtered {
-            h: q,
-            m: floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low),
-            lambda: max(self.lambda, o.lambda) + 2.0,
-        }
+        let certified = y_low >= 0.5 * o.h.abs() && y_low > 0.0;
+        let m = floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low);
+        // Selects rather than branches: the bookkeeping stays straight-line.
+        let (m, lambda) = if self.m == 0.0 {
+            (0.0, 0.0)
+        } else if certified {
+            (m, max(self.lambda, o.lambda) + 2.0)
+        } else {
+            (f64::INFINITY, f64::INFINITY)
+        };
+        Filtered { h: q, m, lambda }
     }
 
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
     /// one rounding of an exact value (or an exact zero).
     #[inline(always)]
     pub(crate) fn quotient_of(num: f64, rounded: f64) -> Self {
-        if num == 0.0 {
-            return Filtered {
-                h: rounded,
-                m: 0.0,
-                lambda: 0.0,
-            };
-        }
         // A subnormal or underflowed quotient is off by at most 2⁻¹⁰⁷⁵, far
         // below u M for the floored M.
+        let exact_zero = num == 0.0;
         Filtered {
             h: rounded,
-            m: floored(rounded.abs() * ONE_PLUS_2U),
-            lambda: 1.0,
+            m: if exact_zero {
+                0.0
+            } else {
+                floored(rounded.abs() * ONE_PLUS_2U)
+            },
+            lambda: if exact_zero { 0.0 } else { 1.0 },
         }
     }
 
