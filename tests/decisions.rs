@@ -40,41 +40,38 @@ trait Decided: Case {
     fn decided(result: &restitution::Result<Self::Outcome>) -> String;
 }
 
+/// The regime an answer took, or its refusal's kind.
+fn decided_by<O>(r: &restitution::Result<O>, regime: impl Fn(&O) -> String) -> String {
+    r.as_ref().map(regime).unwrap_or_else(|e| e.slug().to_string())
+}
+
 impl Decided for PlanarImpact {
     fn decided(r: &restitution::Result<Self::Outcome>) -> String {
-        r.as_ref()
-            .map(|o| o.regime.as_str().to_string())
-            .unwrap_or_else(|e| e.slug().to_string())
+        decided_by(r, |o| o.regime.as_str().to_string())
     }
 }
 
 impl Decided for TorsionalImpact {
     fn decided(r: &restitution::Result<Self::Outcome>) -> String {
-        r.as_ref()
-            .map(|o| o.regime.as_str().to_string())
-            .unwrap_or_else(|e| e.slug().to_string())
+        decided_by(r, |o| o.regime.as_str().to_string())
     }
 }
 
 impl Decided for BodiesImpact {
     fn decided(r: &restitution::Result<Self::Outcome>) -> String {
-        r.as_ref()
-            .map(|o| o.regime.as_str().to_string())
-            .unwrap_or_else(|e| e.slug().to_string())
+        decided_by(r, |o| o.regime.as_str().to_string())
     }
 }
 
 impl Decided for SpatialImpact {
     fn decided(r: &restitution::Result<Self::Outcome>) -> String {
-        r.as_ref()
-            .map(|o| {
-                format!(
-                    "{}/{:?}",
-                    o.regime.as_str(),
-                    o.torsional_regime.map(|t| t.as_str())
-                )
-            })
-            .unwrap_or_else(|e| e.slug().to_string())
+        decided_by(r, |o| {
+            format!(
+                "{}/{:?}",
+                o.regime.as_str(),
+                o.torsional_regime.map(|t| t.as_str())
+            )
+        })
     }
 }
 
@@ -267,6 +264,23 @@ fn fast_decides_the_torsional_branch_exactly() {
     assert!(tally.switches > 150, "{tally:?}");
 }
 
+/// Coulomb friction, or (every third scene) the bilinear law, with `f = 0.3`.
+fn contact_law(rng: &mut Rng, n: usize, dyadic: bool) -> Law {
+    let restitution = draw(rng, 0.0, 1.0, dyadic);
+    if n % 3 == 0 {
+        Law::TangentialRestitution {
+            restitution,
+            friction: 0.3,
+            tangential_restitution: draw(rng, -1.0, 1.0, dyadic),
+        }
+    } else {
+        Law::Friction {
+            restitution,
+            friction: 0.3,
+        }
+    }
+}
+
 fn body2(rng: &mut Rng, dyadic: bool, x: f64) -> Lamina {
     let mass = draw(rng, 0.5, 4.0, dyadic).max(0.125);
     Lamina {
@@ -284,19 +298,7 @@ fn fast_decides_two_body_switches_exactly() {
     let mut tally = Tally::default();
     for n in 0..60 {
         let dyadic = n % 2 == 0;
-        let e = draw(&mut rng, 0.0, 1.0, dyadic);
-        let law = if n % 3 == 0 {
-            Law::TangentialRestitution {
-                restitution: e,
-                friction: 0.3,
-                tangential_restitution: draw(&mut rng, -1.0, 1.0, dyadic),
-            }
-        } else {
-            Law::Friction {
-                restitution: e,
-                friction: 0.3,
-            }
-        };
+        let law = contact_law(&mut rng, n, dyadic);
         let mut a = body2(&mut rng, dyadic, -1.0);
         let b = body2(&mut rng, dyadic, 1.0);
         // A approaches B along x.
@@ -337,19 +339,7 @@ fn fast_decides_spatial_switches_exactly() {
     let mut tally = Tally::default();
     for n in 0..40 {
         let dyadic = n % 2 == 0;
-        let e = draw(&mut rng, 0.0, 1.0, dyadic);
-        let law = if n % 3 == 0 {
-            Law::TangentialRestitution {
-                restitution: e,
-                friction: 0.3,
-                tangential_restitution: draw(&mut rng, -1.0, 1.0, dyadic),
-            }
-        } else {
-            Law::Friction {
-                restitution: e,
-                friction: 0.3,
-            }
-        };
+        let law = contact_law(&mut rng, n, dyadic);
         let mut a = body3(&mut rng, dyadic, 1.0);
         let b = (n % 2 == 1).then(|| body3(&mut rng, dyadic, -1.0));
         // A approaches along −z.
