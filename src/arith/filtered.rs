@@ -256,6 +256,128 @@ impl Filtered {
     }
 }
 
+/// How many impacts a batch kernel evaluates at once: four doubles fill an
+/// AVX2 register.
+pub const LANES: usize = 4;
+
+/// [`LANES`] [`Filtered`] values side by side, each part in an array of its
+/// own (structure of arrays), for the batch kernels. Every operation is the
+/// scalar rule applied lane by lane, so each lane's `(h, M, λ)` is bit for bit
+/// the scalar value's and each lane's decision the scalar decision; the
+/// arrays let the compiler run the four lanes in one vector instruction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Lanes {
+    h: [f64; LANES],
+    m: [f64; LANES],
+    lambda: [f64; LANES],
+}
+
+impl Lanes {
+    #[inline(always)]
+    fn lane(&self, i: usize) -> Filtered {
+        Filtered {
+            h: self.h[i],
+            m: self.m[i],
+            lambda: self.lambda[i],
+        }
+    }
+
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize) -> Filtered) -> Self {
+        let mut r = Lanes {
+            h: [0.0; LANES],
+            m: [0.0; LANES],
+            lambda: [0.0; LANES],
+        };
+        for i in 0..LANES {
+            let v = f(i);
+            r.h[i] = v.h;
+            r.m[i] = v.m;
+            r.lambda[i] = v.lambda;
+        }
+        r
+    }
+
+    /// Inputs, exactly.
+    #[inline(always)]
+    pub(crate) fn exact(x: [f64; LANES]) -> Self {
+        Self::from_fn(|i| Filtered::exact(x[i]))
+    }
+
+    /// One input in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(x: f64) -> Self {
+        Self::exact([x; LANES])
+    }
+
+    /// The plain f64 values.
+    #[inline(always)]
+    pub(crate) fn values(&self) -> [f64; LANES] {
+        self.h
+    }
+
+    #[inline(always)]
+    pub(crate) fn add(&self, o: &Self) -> Self {
+        Self::from_fn(|i| self.lane(i).add(&o.lane(i)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn sub(&self, o: &Self) -> Self {
+        Self::from_fn(|i| self.lane(i).sub(&o.lane(i)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn neg(&self) -> Self {
+        Self::from_fn(|i| self.lane(i).neg())
+    }
+
+    #[inline(always)]
+    pub(crate) fn mul(&self, o: &Self) -> Self {
+        Self::from_fn(|i| self.lane(i).mul(&o.lane(i)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
+        Self::from_fn(|i| self.lane(i).mul_add(&b.lane(i), &c.lane(i)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn div(&self, o: &Self) -> Self {
+        Self::from_fn(|i| self.lane(i).div(&o.lane(i)))
+    }
+
+    /// Quotients of two inputs, `rounded` being their f64 quotients.
+    #[inline(always)]
+    pub(crate) fn quotient_of(num: [f64; LANES], rounded: [f64; LANES]) -> Self {
+        Self::from_fn(|i| Filtered::quotient_of(num[i], rounded[i]))
+    }
+
+    /// `a` in the lanes where `pick` holds, `b` in the others.
+    #[inline(always)]
+    pub(crate) fn select(pick: [bool; LANES], a: &Self, b: &Self) -> Self {
+        Self::from_fn(|i| if pick[i] { a.lane(i) } else { b.lane(i) })
+    }
+
+    /// Each lane's exact sign, `None` where the scalar rule leaves it undecided.
+    #[inline(always)]
+    pub(crate) fn signs(&self) -> [Option<Ordering>; LANES] {
+        std::array::from_fn(|i| self.lane(i).sign().ok())
+    }
+
+    /// `|x|` of each lane whose sign is decided (as the model forms it: the
+    /// negation of a negative value); undecided lanes keep their value.
+    #[inline(always)]
+    pub(crate) fn abs(&self, signs: &[Option<Ordering>; LANES]) -> Self {
+        Self::from_fn(|i| {
+            if signs[i] == Some(Ordering::Less) {
+                self.lane(i).neg()
+            } else {
+                self.lane(i)
+            }
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -420,5 +542,68 @@ mod tests {
         // Overflow decides nothing.
         let big = Filtered::exact(1e300);
         assert_eq!(big.mul(&big).sign(), Err(Uncertain::Range));
+    }
+    /// Each lane of every operation is the scalar operation's value, bit for
+    /// bit in `h`, `M` and `λ`, and each lane's sign the scalar sign.
+    #[test]
+    fn lanes_are_the_scalar_rules_lane_by_lane() {
+        let mut rng = Rng::new(0x1a4e5);
+        let bits = |v: &Filtered| (v.h.to_bits(), v.m.to_bits(), v.lambda.to_bits());
+        for case in 0..2_000 {
+            let span = [4.0, 60.0, 600.0][case % 3];
+            let mut draw4 = || -> [f64; LANES] {
+                std::array::from_fn(|k| {
+                    if (case + k) % 11 == 0 {
+                        0.0
+                    } else {
+                        draw(&mut rng, span)
+                    }
+                })
+            };
+            let (xa, xb, xc) = (draw4(), draw4(), draw4());
+            let (a, b, c) = (Lanes::exact(xa), Lanes::exact(xb), Lanes::exact(xc));
+            // Values with rounding errors in them, then every operation on those.
+            let (p, q, r) = (a.mul(&b).add(&c), b.div(&c).sub(&a), c.mul_add(&a, &b.neg()));
+            let results = [
+                p.add(&q),
+                p.sub(&r),
+                q.mul(&r),
+                p.mul_add(&q, &r),
+                p.div(&r),
+                Lanes::quotient_of(xa, std::array::from_fn(|i| xa[i] / xb[i])),
+                Lanes::select([true, false, true, false], &p, &q),
+                p.abs(&p.signs()),
+            ];
+            for i in 0..LANES {
+                let (sa, sb, sc) = (
+                    Filtered::exact(xa[i]),
+                    Filtered::exact(xb[i]),
+                    Filtered::exact(xc[i]),
+                );
+                let (sp, sq, sr) = (
+                    sa.mul(&sb).add(&sc),
+                    sb.div(&sc).sub(&sa),
+                    sc.mul_add(&sa, &sb.neg()),
+                );
+                let expected = [
+                    sp.add(&sq),
+                    sp.sub(&sr),
+                    sq.mul(&sr),
+                    sp.mul_add(&sq, &sr),
+                    sp.div(&sr),
+                    Filtered::quotient_of(xa[i], xa[i] / xb[i]),
+                    if i % 2 == 0 { sp } else { sq },
+                    sp.abs_for_test(),
+                ];
+                for (k, (lanes, scalar)) in results.iter().zip(&expected).enumerate() {
+                    assert_eq!(bits(&lanes.lane(i)), bits(scalar), "case {case} op {k} lane {i}");
+                    assert_eq!(
+                        lanes.signs()[i],
+                        scalar.sign().ok(),
+                        "case {case} op {k} lane {i}"
+                    );
+                }
+            }
+        }
     }
 }
