@@ -14,7 +14,7 @@
 mod common;
 
 use common::Rng;
-use common::lanes::sweep_is_single_solves;
+use common::sweep_rows::sweep_is_single_solves;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, Case, Contact, Input, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity,
@@ -133,15 +133,9 @@ fn check_switch<C: Decided>(base: &C, input: Input, lo: f64, hi: f64, tally: &mu
         }
     }
     tally.switches += 1;
-    // The same doubles through a sweep (a batch kernel answers them four at
-    // a time where the case has one), each at every lane position.
+    // The same doubles through a sweep: its rows are the single solves.
     let around: Vec<f64> = ((a - REACH + 1)..=(b + REACH - 1)).map(from_key).collect();
-    for shift in 0..4 {
-        let padded: Vec<f64> = std::iter::repeat_n(from_key(a - REACH), shift)
-            .chain(around.iter().copied())
-            .collect();
-        sweep_is_single_solves(base, input, &padded);
-    }
+    sweep_is_single_solves(base, input, &around);
     for k in (a - REACH + 1)..=(b + REACH - 1) {
         let impact = with(base, input, from_key(k));
         let exact = decide(&impact, Arithmetic::Exact);

@@ -31,6 +31,5 @@ mod surd;
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, Fraction, OutOfRange, Undecided};
-pub use filtered::LANES;
-pub(crate) use filtered::{Filtered, Lanes, Uncertain};
+pub(crate) use filtered::{Filtered, Uncertain};
 pub(crate) use surd::{Radical, Surd};

@@ -37,7 +37,6 @@ pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
 pub use self::planar::{Law, PlanarBody, PlanarImpact};
 pub use self::spatial::{RigidBody, SpatialContact, SpatialImpact, Twist};
 pub use self::torsional::TorsionalImpact;
-pub use crate::arith::LANES;
 use crate::arith::{
     Bounded, Compensated, Filtered, OutOfRange, Radical, Surd, Uncertain, Undecided, Unsettled,
 };
@@ -180,21 +179,6 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
         in_range: bool,
         out: &mut Self::Outcome,
     ) -> (Result<()>, Stage);
-    /// Answers, in `fast` precision, the impacts of `impacts` that a batch
-    /// kernel evaluates [`LANES`] at a time, writing their outcomes to `out`
-    /// and returning which it answered (bit for bit the single solves'
-    /// answers); the caller solves the others one by one. Cases without a
-    /// batch kernel answer none.
-    #[inline(always)]
-    fn evaluate_lanes(
-        impacts: &[Self; LANES],
-        fixed: &Self::Fixed,
-        outputs: Outputs,
-        out: &mut [Self::Outcome; LANES],
-    ) -> [bool; LANES] {
-        let _ = (impacts, fixed, outputs, out);
-        [false; LANES]
-    }
 }
 
 /// Solves one impact in `precision`, computing the optional `outputs`.
@@ -256,25 +240,6 @@ impl<C: Case> Solver<C> {
     pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
         let mut outcome = C::Outcome::default();
         self.solve_into(impact, &mut outcome).map(|()| outcome)
-    }
-
-    /// Solves [`LANES`] impacts into `out`, through the case's batch kernel
-    /// where it has one and the precision is `fast`, else one by one: the
-    /// answers of [`Solver::solve_into`] for each, bit for bit.
-    #[inline(always)]
-    pub fn solve_lanes(&self, impacts: &[C; LANES], out: &mut [C::Outcome; LANES]) -> [Result<()>; LANES] {
-        let answered = if self.arithmetic == Arithmetic::Fast && self.fixed_in_range {
-            C::evaluate_lanes(impacts, &self.fixed, self.outputs, out)
-        } else {
-            [false; LANES]
-        };
-        std::array::from_fn(|i| {
-            if answered[i] {
-                Ok(())
-            } else {
-                self.solve_into(&impacts[i], &mut out[i])
-            }
-        })
     }
 
     /// Solves `impact` into `out` (left as it was on a refusal).

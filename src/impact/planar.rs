@@ -1,12 +1,11 @@
 //! The planar case: a rigid lamina or a point mass against a barrier, with
 //! one tangential law (the normal, oblique and tangential endpoints).
 
-use super::{Arithmetic, Case, LANES, Model, Stage, evaluate};
+use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
-use crate::model::planar_lanes::{self, CoulombLanes};
 use crate::outcome::{Outputs, PlanarOutcome};
 use crate::quantity::Value;
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
@@ -547,47 +546,5 @@ impl Case for PlanarImpact {
                 }
             }
         }
-    }
-
-    /// Coulomb friction on a rigid lamina has a batch kernel
-    /// (`model/planar_lanes.rs`); every other law and the point mass are
-    /// solved one by one.
-    #[inline(always)]
-    fn evaluate_lanes(
-        impacts: &[Self; LANES],
-        fixed: &Self::Fixed,
-        outputs: Outputs,
-        out: &mut [PlanarOutcome; LANES],
-    ) -> [bool; LANES] {
-        if matches!(fixed, Some(Err(_))) {
-            return [false; LANES];
-        }
-        let mut lanes = CoulombLanes::default();
-        for (i, impact) in impacts.iter().enumerate() {
-            let (
-                PlanarBody::Rigid {
-                    mass,
-                    inertia,
-                    contact,
-                },
-                Law::Friction {
-                    restitution,
-                    friction,
-                },
-            ) = (impact.body, impact.law)
-            else {
-                return [false; LANES];
-            };
-            lanes.mass[i] = mass;
-            lanes.inertia[i] = inertia;
-            lanes.dc[i] = contact.tangential_offset;
-            lanes.dd[i] = contact.normal_offset;
-            lanes.vn[i] = impact.velocity.normal;
-            lanes.vt[i] = impact.velocity.tangential;
-            lanes.w[i] = impact.velocity.angular;
-            lanes.restitution[i] = restitution;
-            lanes.friction[i] = friction;
-        }
-        planar_lanes::coulomb(&lanes, outputs, out)
     }
 }

@@ -18,7 +18,6 @@
 pub(crate) mod bodies;
 pub(crate) mod contact;
 pub(crate) mod planar;
-pub(crate) mod planar_lanes;
 pub(crate) mod spatial;
 pub(crate) mod torsional;
 

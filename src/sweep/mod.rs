@@ -20,7 +20,7 @@ use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points, shard};
 
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::{Case, LANES, Precision, Solver};
+use crate::impact::{Case, Precision, Solver};
 use crate::outcome::Outputs;
 
 /// One output value of a point: a number or a name (a regime).
@@ -38,21 +38,6 @@ pub trait SweepCase: Sync {
     fn columns(&self) -> usize;
     /// Evaluates one point into `cells` (`columns()` long).
     fn evaluate(&self, point: &Self::Point, cells: &mut [Cell]) -> Result<(), ImpactError>;
-    /// Evaluates [`LANES`] points into `cells` (`columns()` per point, point
-    /// after point): the same answers as [`SweepCase::evaluate`] of each, by
-    /// a batch kernel where the case has one.
-    #[inline(always)]
-    fn evaluate_lanes(
-        &self,
-        points: &[Self::Point; LANES],
-        cells: &mut [Cell],
-        results: &mut [Result<(), ImpactError>; LANES],
-    ) {
-        let n = self.columns();
-        for (lane, point) in points.iter().enumerate() {
-            results[lane] = self.evaluate(point, &mut cells[lane * n..(lane + 1) * n]);
-        }
-    }
 }
 
 /// One axis: the input it sets and its values.
@@ -189,9 +174,6 @@ impl<C: SweepCase> Sweep<C> {
         )
     }
 
-    /// Walks the range [`LANES`] points at a time: the odometer sets each
-    /// point's swept inputs, the case evaluates the group (a batch kernel
-    /// where it has one), and the points are visited in order.
     #[inline(always)]
     fn for_each_in_here(&self, range: Range<u64>, mut visit: impl FnMut(Row<'_>)) {
         let start = range.start.max(self.range.start);
@@ -199,52 +181,27 @@ impl<C: SweepCase> Sweep<C> {
         if start >= end {
             return;
         }
+        let range = start..end;
         let lens = self.axes.iter().map(|a| a.values.len()).collect();
-        let mut odometer = Odometer::at(lens, self.combine, start);
-        let (axes, columns) = (self.axes.len(), self.case.columns());
-        let mut current = vec![0.0; axes];
-        // Per lane: its point, axis values, axis indices, cells and result.
-        let mut points = [self.base; LANES];
-        let mut values = vec![0.0; axes * LANES];
-        let mut digits = vec![0; axes * LANES];
-        let mut cells = vec![Cell::Number(0.0); columns * LANES];
-        let mut results: [Result<(), ImpactError>; LANES] = std::array::from_fn(|_| Ok(()));
+        let mut odometer = Odometer::at(lens, self.combine, range.start);
+        let mut values = vec![0.0; self.axes.len()];
+        let mut cells = vec![Cell::Number(0.0); self.case.columns()];
         let mut point = self.base;
         let mut changed = 0;
-        let mut index = start;
-        while index < end {
-            let count = (end - index).min(LANES as u64) as usize;
-            for lane in 0..count {
-                for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
-                    let v = a.values.value(digit);
-                    current[axis] = v;
-                    C::set(&mut point, a.param, v);
-                }
-                points[lane] = point;
-                values[lane * axes..(lane + 1) * axes].copy_from_slice(&current);
-                digits[lane * axes..(lane + 1) * axes].copy_from_slice(odometer.digits());
-                changed = odometer.advance();
+        for index in range.start..end {
+            for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
+                let v = a.values.value(digit);
+                values[axis] = v;
+                C::set(&mut point, a.param, v);
             }
-            if count == LANES {
-                self.case.evaluate_lanes(&points, &mut cells, &mut results);
-            } else {
-                for lane in 0..count {
-                    results[lane] = self
-                        .case
-                        .evaluate(&points[lane], &mut cells[lane * columns..(lane + 1) * columns]);
-                }
-            }
-            for (lane, result) in results.iter().enumerate().take(count) {
-                visit(Row {
-                    index: index + lane as u64,
-                    axis_values: &values[lane * axes..(lane + 1) * axes],
-                    axis_indices: &digits[lane * axes..(lane + 1) * axes],
-                    outcome: result
-                        .as_ref()
-                        .map(|()| &cells[lane * columns..(lane + 1) * columns]),
-                });
-            }
-            index += count as u64;
+            let outcome = self.case.evaluate(&point, &mut cells);
+            visit(Row {
+                index,
+                axis_values: &values,
+                axis_indices: odometer.digits(),
+                outcome: outcome.as_ref().map(|()| &cells[..]),
+            });
+            changed = odometer.advance();
         }
     }
 
@@ -342,26 +299,6 @@ impl<C: Case> SweepCase for CaseSweep<C> {
             *cell = C::output(&outcome, column);
         }
         Ok(())
-    }
-
-    #[inline(always)]
-    fn evaluate_lanes(
-        &self,
-        points: &[C; LANES],
-        cells: &mut [Cell],
-        results: &mut [Result<(), ImpactError>; LANES],
-    ) {
-        let mut outcomes = [C::Outcome::default(); LANES];
-        let answers = self.solver.solve_lanes(points, &mut outcomes);
-        let n = self.columns.len();
-        for (lane, answer) in answers.into_iter().enumerate() {
-            if answer.is_ok() {
-                for (cell, &column) in cells[lane * n..(lane + 1) * n].iter_mut().zip(&self.columns) {
-                    *cell = C::output(&outcomes[lane], column);
-                }
-            }
-            results[lane] = answer;
-        }
     }
 }
 

@@ -4,7 +4,7 @@
 pub mod accuracy;
 pub mod bodies_reference;
 pub mod examples;
-pub mod lanes;
+pub mod sweep_rows;
 pub mod linear;
 pub mod plain;
 pub mod reference;

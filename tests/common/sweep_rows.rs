@@ -1,6 +1,6 @@
 //! Sweeps against single solves: every row of a sweep must be the single
-//! solve of its point, bit for bit (the batch kernels answer groups of
-//! points; the points they cannot answer are solved alone).
+//! solve of its point, bit for bit (a sweep prepares what its axes do not
+//! change once, and walks the grid with its own odometer).
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{Case, Input, Outputs, Precision, solve};

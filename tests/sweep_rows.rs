@@ -1,14 +1,13 @@
-//! A sweep's rows are the single solves of its points, bit for bit, where a
-//! batch kernel answers the points four at a time (Coulomb friction on a rigid
-//! lamina, `fast` precision): over random scenes swept through both regimes,
-//! zero slip, central contacts, G on the normal, and values that are outside
-//! the fast range or invalid (which leave their lane to the single solve).
-//! The adversarial sets at every switch are swept too (`tests/decisions.rs`).
+//! A sweep's rows are the single solves of its points, bit for bit: over
+//! random Coulomb scenes swept through both regimes, zero slip, central
+//! contacts, G on the normal, and values that are outside the fast range or
+//! invalid. (The adversarial sets at every switch are swept too, in
+//! `tests/decisions.rs`.)
 
 mod common;
 
 use common::Rng;
-use common::lanes::sweep_is_single_solves;
+use common::sweep_rows::sweep_is_single_solves;
 use restitution::{Contact, Input, Law, PlanarImpact, PlanarVelocity};
 
 fn lamina(rng: &mut Rng, n: usize) -> PlanarImpact {
