@@ -50,20 +50,29 @@ fn runtime() -> tokio::runtime::Runtime {
 }
 
 async fn serve(mut config: restitution::http::ServiceConfig) -> ExitCode {
-    // Log lines are formatted on the request's thread and written by a
-    // dedicated thread: no write system call on the request path. Not lossy:
-    // when its queue is full a request waits rather than lose its line.
-    let (writer, _flush_on_exit) = tracing_appender::non_blocking::NonBlockingBuilder::default()
-        .lossy(false)
-        .finish(std::io::stdout());
+    // One thread writes the log: no write system call on the request path,
+    // and the access log's lines are formatted there too (a request hands it
+    // its fields). Not lossy: when its queue is full a request waits rather
+    // than lose its line. The guard writes out what is queued on the way out.
+    let ansi = std::io::IsTerminal::is_terminal(&std::io::stdout());
+    let (writer, _flush_on_exit) = match restitution::http::log::spawn(std::io::stdout(), ansi) {
+        Ok(spawned) => spawned,
+        Err(error) => {
+            eprintln!("restitution: cannot start the log writer: {error}");
+            return ExitCode::FAILURE;
+        }
+    };
     tracing_subscriber::fmt()
-        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stdout()))
-        .with_writer(writer)
+        .with_ansi(ansi)
+        .with_writer(writer.clone())
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("RESTITUTION_LOG")
                 .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
         )
         .init();
+    // The access log at the level `RESTITUTION_LOG` gives its target, checked
+    // once here rather than per request.
+    restitution::http::log::install_access_log(&writer, restitution::http::log::access_log_level());
     if let Err(error) = config.load_api_key() {
         tracing::error!(%error, "cannot read the API key");
         return ExitCode::FAILURE;

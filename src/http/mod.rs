@@ -10,6 +10,8 @@ pub mod dto;
 pub mod extract;
 pub mod fits;
 pub mod impacts;
+mod layers;
+pub mod log;
 pub mod offline;
 pub mod planar;
 pub mod problem;
@@ -20,13 +22,13 @@ pub mod web;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use axum::extract::{DefaultBodyLimit, Request, State};
 use axum::http::{HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
-use axum::{BoxError, Json, Router};
+use axum::{Json, Router};
 use serde::Serialize;
 use tower::ServiceBuilder;
 use tower_http::catch_panic::CatchPanicLayer;
@@ -216,8 +218,10 @@ pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(config.body_limit))
-        .layer(axum::Extension(limits.clone()))
-        .layer(middleware::from_fn_with_state(limits, request_timeout))
+        .layer(axum::Extension(limits))
+        .layer(layers::DeadlineLayer {
+            limit_ms: config.request_timeout_ms,
+        })
         .layer(
             ServiceBuilder::new()
                 .layer(SetRequestIdLayer::new(
@@ -231,17 +235,12 @@ pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
                     axum::http::header::X_CONTENT_TYPE_OPTIONS,
                     HeaderValue::from_static("nosniff"),
                 ))
-                .layer(middleware::from_fn(access_log))
-                .layer(middleware::from_fn(telemetry::record))
+                .layer(layers::ObserveLayer)
                 .layer(CatchPanicLayer::custom(panic_response))
-                .layer(axum::error_handling::HandleErrorLayer::new(overloaded))
-                .load_shed()
                 // One semaphore for every route: `Router::layer` applies the
                 // stack to each route, and a plain concurrency limit would
                 // give each route its own.
-                .layer(tower::limit::GlobalConcurrencyLimitLayer::new(
-                    config.concurrency_limit,
-                )),
+                .layer(layers::ShedLayer::new(config.concurrency_limit)),
         );
     let router = match &config.api_key {
         Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
@@ -317,19 +316,6 @@ fn same_secret(given: &[u8], key: &[u8]) -> bool {
     given.len() == key.len() && given.iter().zip(key).fold(0u8, |acc, (a, b)| acc | (a ^ b)) == 0
 }
 
-async fn overloaded(_: BoxError) -> Response {
-    let mut response = ApiError::new(
-        StatusCode::SERVICE_UNAVAILABLE,
-        "overloaded",
-        "Service overloaded",
-        "the server is at its concurrency limit; retry shortly",
-    )
-    .retry_after(1)
-    .into_response();
-    response.extensions_mut().insert(telemetry::Shed);
-    response
-}
-
 async fn not_found(request: Request) -> ApiError {
     ApiError::new(
         StatusCode::NOT_FOUND,
@@ -348,58 +334,9 @@ async fn method_not_allowed(request: Request) -> ApiError {
     )
 }
 
-async fn request_timeout(State(config): State<Arc<ServiceConfig>>, request: Request, next: Next) -> Response {
-    let limit = Duration::from_millis(config.request_timeout_ms);
-    match tokio::time::timeout(limit, next.run(request)).await {
-        Ok(response) => response,
-        Err(_) => ApiError::new(
-            StatusCode::REQUEST_TIMEOUT,
-            "timeout",
-            "Request timeout",
-            format!(
-                "the request did not complete within {} ms",
-                config.request_timeout_ms
-            ),
-        )
-        .into_response(),
-    }
-}
-
-/// One structured log line per request.
-async fn access_log(request: Request, next: Next) -> Response {
-    let start = Instant::now();
-    // Clones that share the request's buffers (no allocation per request).
-    let method = request.method().clone();
-    let uri = request.uri().clone();
-    let path = uri.path();
-    let request_id = request
-        .extensions()
-        .get::<RequestId>()
-        .map(|id| id.header_value().clone());
-    let id = request_id.as_ref().and_then(|v| v.to_str().ok()).unwrap_or("-");
-    let response = next.run(request).await;
-    let status = response.status();
-    let latency_us = start.elapsed().as_micros() as u64;
-    // A server-side failure is logged at error level (warn for load shedding,
-    // which the client is told to retry), with the panic message if any; the
-    // request id ties it to the answer the client saw.
-    if status == StatusCode::SERVICE_UNAVAILABLE {
-        tracing::warn!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
-    } else if status.is_server_error() {
-        let panic = response
-            .extensions()
-            .get::<PanicMessage>()
-            .map_or("", |p| p.0.as_str());
-        tracing::error!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, panic, "request");
-    } else {
-        tracing::info!(request_id = %id, method = %method, path = %path, status = status.as_u16(), latency_us, "request");
-    }
-    response
-}
-
 /// The message of a handler's panic, carried on its 500 answer to the access log.
 #[derive(Clone)]
-struct PanicMessage(String);
+pub(crate) struct PanicMessage(pub(crate) String);
 
 /// The 500 problem for a handler that panicked.
 fn panic_response(panic: Box<dyn std::any::Any + Send + 'static>) -> Response {
@@ -430,16 +367,44 @@ struct SequentialId {
 impl MakeRequestId for SequentialId {
     fn make_request_id<B>(&mut self, _: &axum::http::Request<B>) -> Option<RequestId> {
         let n = self.next.fetch_add(1, Ordering::Relaxed);
-        let value = format!("{:x}-{n}", *PROCESS_TAG);
-        HeaderValue::from_str(&value).ok().map(RequestId::new)
+        // Written into a per-thread block shared by the ids cut from it: no
+        // formatting machinery and no allocation per id.
+        let value = ID_BLOCK.with(|block| {
+            let mut block = block.borrow_mut();
+            if block.capacity() - block.len() < PROCESS_TAG.len() + 20 {
+                *block = bytes::BytesMut::with_capacity(4096);
+            }
+            block.extend_from_slice(PROCESS_TAG.as_bytes());
+            let mut digits = [0u8; 20];
+            let mut i = digits.len();
+            let mut rest = n;
+            loop {
+                i -= 1;
+                digits[i] = b'0' + (rest % 10) as u8;
+                rest /= 10;
+                if rest == 0 {
+                    break;
+                }
+            }
+            block.extend_from_slice(&digits[i..]);
+            block.split().freeze()
+        });
+        HeaderValue::from_maybe_shared(value).ok().map(RequestId::new)
     }
 }
 
-static PROCESS_TAG: std::sync::LazyLock<u64> = std::sync::LazyLock::new(|| {
-    std::time::SystemTime::now()
+thread_local! {
+    /// Where this thread writes request ids.
+    static ID_BLOCK: std::cell::RefCell<bytes::BytesMut> = std::cell::RefCell::new(bytes::BytesMut::new());
+}
+
+/// `<process start in microseconds, hex>-`, the request ids' prefix.
+static PROCESS_TAG: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+    let start = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_micros() as u64)
-        .unwrap_or(0)
+        .unwrap_or(0);
+    format!("{start:x}-")
 });
 
 /// Serves `app` on `listener` until SIGINT or SIGTERM, letting in-flight requests finish.

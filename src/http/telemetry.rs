@@ -10,11 +10,10 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use axum::extract::{MatchedPath, Request};
 use axum::http::{StatusCode, header};
-use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use axum::{Extension, Json};
 use prometheus_client::encoding::EncodeLabelSet;
@@ -258,48 +257,67 @@ impl Telemetry {
     }
 }
 
-/// Records each request: in flight while answered, then its count, latency
-/// and (for a shed one) the shedding time. Does nothing for a router without
-/// telemetry (the load test's baseline).
-pub(crate) async fn record(request: Request, next: Next) -> Response {
-    let Some(telemetry) = request
-        .extensions()
-        .get::<Telemetry>()
-        .filter(|t| t.0.recording.load(Ordering::Relaxed))
-        .cloned()
-    else {
-        return next.run(request).await;
-    };
-    let route = route_label(
-        request
+/// One request being recorded: counted in flight until finished or dropped
+/// (a client that goes away), then its count, latency and (for a shed one)
+/// the shedding time.
+pub(crate) struct Recording {
+    telemetry: Telemetry,
+    route: Route,
+    method: MethodLabel,
+}
+
+impl Recording {
+    /// Starts recording `request`; `None` for a router without telemetry
+    /// (the load test's baseline) or with the recording off.
+    pub(crate) fn start(request: &Request) -> Option<Recording> {
+        let telemetry = request
             .extensions()
-            .get::<MatchedPath>()
-            .map_or("unmatched", |p| p.as_str()),
-    );
-    let method = MethodLabel(request.method().clone());
-    let inner = &telemetry.0;
-    inner.in_flight.inc();
-    let start = Instant::now();
-    let response = next.run(request).await;
-    inner.in_flight.dec();
-    if response.extensions().get::<Shed>().is_some() {
-        inner.shed.inc();
-        let now = (inner.started.elapsed().as_millis() as u64).max(1);
-        inner.last_shed_ms.store(now, Ordering::Relaxed);
-    }
-    inner
-        .latency
-        .get_or_create(&RouteLabels { route: route.clone() })
-        .observe(start.elapsed().as_secs_f64());
-    inner
-        .requests
-        .get_or_create(&RequestLabels {
+            .get::<Telemetry>()
+            .filter(|t| t.0.recording.load(Ordering::Relaxed))?
+            .clone();
+        let route = route_label(
+            request
+                .extensions()
+                .get::<MatchedPath>()
+                .map_or("unmatched", |p| p.as_str()),
+        );
+        telemetry.0.in_flight.inc();
+        Some(Recording {
+            telemetry,
             route,
-            method,
-            status: response.status().as_u16(),
+            method: MethodLabel(request.method().clone()),
         })
-        .inc();
-    response
+    }
+
+    /// Records the answer, given `elapsed` since the request came in.
+    pub(crate) fn finish<B>(self, response: &axum::http::Response<B>, elapsed: Duration) {
+        let inner = &self.telemetry.0;
+        if response.extensions().get::<Shed>().is_some() {
+            inner.shed.inc();
+            let now = (inner.started.elapsed().as_millis() as u64).max(1);
+            inner.last_shed_ms.store(now, Ordering::Relaxed);
+        }
+        inner
+            .latency
+            .get_or_create(&RouteLabels {
+                route: self.route.clone(),
+            })
+            .observe(elapsed.as_secs_f64());
+        inner
+            .requests
+            .get_or_create(&RequestLabels {
+                route: self.route.clone(),
+                method: self.method.clone(),
+                status: response.status().as_u16(),
+            })
+            .inc();
+    }
+}
+
+impl Drop for Recording {
+    fn drop(&mut self) {
+        self.telemetry.0.in_flight.dec();
+    }
 }
 
 /// Readiness answer.
