@@ -4,13 +4,13 @@
 pub mod accuracy;
 pub mod bodies_reference;
 pub mod examples;
-pub mod sweep_rows;
 pub mod linear;
 pub mod plain;
 pub mod reference;
 mod rng;
 pub mod server;
 pub mod spatial_reference;
+pub mod sweep_rows;
 pub mod validation;
 
 pub use rng::Rng;
