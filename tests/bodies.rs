@@ -458,3 +458,43 @@ fn an_elastic_contact_with_zero_exact_loss_is_answered_in_fast_precision_too() {
     assert_eq!(exact.energy.unwrap().loss, 0.0);
     assert_eq!(fast.regime, exact.regime);
 }
+
+/// A refusal decided where the impulse ratio itself is too small to certify
+/// (μ ≈ 1.3e-17, sliding at the switch) still names a number in its payload,
+/// the exact one's neighbour (it was a NaN), in every precision.
+#[test]
+fn a_refusal_names_its_impulse_ratio_even_when_it_is_uncertified() {
+    let impact = BodiesImpact {
+        a: Lamina {
+            mass: 3.5,
+            inertia: 0.875,
+            position: [-1.0, -0.25],
+            velocity: [5.0, -4.890218912435025],
+            angular_velocity: -0.5,
+        },
+        b: Some(Lamina {
+            mass: 2.0,
+            inertia: 3.75,
+            position: [1.0, -0.875],
+            velocity: [0.5, 3.625],
+            angular_velocity: -0.5,
+        }),
+        contact: PlanarContact {
+            point: [0.0, -0.25],
+            normal: [-1.0, 0.5],
+        },
+        law: Law::Friction {
+            restitution: 1.0,
+            friction: 0.3,
+        },
+    };
+    for arithmetic in [Arithmetic::Fast, Arithmetic::Exact, Arithmetic::Rational] {
+        match solve_in(&impact, Outputs::ALL, arithmetic).0 {
+            Err(ImpactError::CreatesEnergy { impulse_ratio, .. }) => assert!(
+                impulse_ratio.is_finite() && (impulse_ratio - 1.27e-17).abs() < 1e-19,
+                "{arithmetic:?}: {impulse_ratio}"
+            ),
+            other => panic!("{arithmetic:?}: {other:?}"),
+        }
+    }
+}

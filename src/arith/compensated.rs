@@ -244,7 +244,14 @@ impl Compensated {
             && q.abs() >= QUOTIENT_MIN
             && q.is_finite();
         if !certified {
-            return Self::UNKNOWN;
+            // Nothing is decided on it (M = λ = ∞); the quotient of the
+            // operands' approximations stays for diagnostics (a refusal's
+            // payload may name it).
+            return Compensated {
+                h: self.approx() / o.approx(),
+                l: 0.0,
+                ..Self::UNKNOWN
+            };
         }
         let r = (-q).mul_add(yh, self.h);
         let n = (-q).mul_add(yl, r + self.l);
@@ -332,6 +339,26 @@ mod tests {
 
     fn of(x: f64) -> BigRational {
         BigRational::from_float(x).unwrap()
+    }
+
+    /// A quotient too small to certify decides nothing, alone or in later
+    /// operations, yet still approximates its value for a refusal's payload
+    /// (it was a NaN there).
+    #[test]
+    fn an_uncertified_quotient_decides_nothing_but_approximates_its_value() {
+        let q = Compensated::exact(1e-300).div(&Compensated::exact(1e300));
+        assert_eq!(q.approx(), 1e-300 / 1e300);
+        // The operands' compensated parts count: ((1 + 2⁻⁶⁰) − 1) / 2¹⁰⁰ is
+        // 2⁻¹⁶⁰, though the plain parts' quotient is 0.
+        let one = Compensated::exact(1.0);
+        let tiny = one.add(&Compensated::exact(2f64.powi(-60))).sub(&one);
+        let r = tiny.div(&Compensated::exact(2f64.powi(100)));
+        assert_eq!(r.approx(), 2f64.powi(-160));
+        assert!(r.sign().is_err());
+        assert!(q.sign().is_err() && q.round().is_err());
+        let sum = q.add(&Compensated::exact(1.0));
+        assert!(sum.sign().is_err() && sum.round().is_err());
+        assert!(q.mul(&Compensated::exact(2.0)).sign().is_err());
     }
 
     /// Checks (I1)–(I3) of a computed value against its exact value.
