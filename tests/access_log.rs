@@ -2,32 +2,12 @@
 //! per request in `tracing_subscriber::fmt`'s format, filtered by
 //! `RESTITUTION_LOG`, every line written out before the process exits.
 
+mod common;
+
+use common::process::{connect, free_port};
 use std::io::{Read, Write};
-use std::net::{TcpListener, TcpStream};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn free_port() -> u16 {
-    TcpListener::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
-
-fn connect(port: u16) -> TcpStream {
-    let deadline = Instant::now() + Duration::from_secs(20);
-    loop {
-        match TcpStream::connect(("127.0.0.1", port)) {
-            Ok(stream) => {
-                stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
-                return stream;
-            }
-            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(10)),
-            Err(error) => panic!("the server does not accept connections: {error}"),
-        }
-    }
-}
 
 const IMPACT: &str = r#"{"body": {"mass": 2.0}, "velocity": {"normal": -3.0}, "restitution": 0.5}"#;
 

@@ -2,32 +2,13 @@
 //! flight when SIGTERM arrives all complete, new connections are refused, and
 //! the process exits 0 within its grace period.
 
+mod common;
+
+use common::process::{connect, free_port};
 use std::io::{Read, Write};
-use std::net::{TcpListener, TcpStream};
+use std::net::TcpStream;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn free_port() -> u16 {
-    TcpListener::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port()
-}
-
-fn connect(port: u16) -> TcpStream {
-    let deadline = Instant::now() + Duration::from_secs(20);
-    loop {
-        match TcpStream::connect(("127.0.0.1", port)) {
-            Ok(stream) => {
-                stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
-                return stream;
-            }
-            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(10)),
-            Err(error) => panic!("the server does not accept connections: {error}"),
-        }
-    }
-}
 
 const IMPACT: &str = r#"{"body": {"mass": 2.0}, "velocity": {"normal": -3.0}, "restitution": 0.5}"#;
 

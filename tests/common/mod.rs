@@ -6,6 +6,7 @@ pub mod bodies_reference;
 pub mod examples;
 pub mod linear;
 pub mod plain;
+pub mod process;
 pub mod reference;
 mod rng;
 pub mod server;
