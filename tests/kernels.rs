@@ -9,9 +9,16 @@ use std::process::Command;
 
 use serde_json::{Value, json};
 
+/// The binary under test: `RESTITUTION_BINARY` if set, else the one cargo built.
+fn binary() -> std::path::PathBuf {
+    std::env::var_os("RESTITUTION_BINARY")
+        .map(Into::into)
+        .unwrap_or_else(|| env!("CARGO_BIN_EXE_restitution").into())
+}
+
 /// The CSV of the sweep in `path` with `kernels`.
 fn sweep_with(kernels: &str, path: &std::path::Path) -> Vec<u8> {
-    let out = Command::new(env!("CARGO_BIN_EXE_restitution"))
+    let out = Command::new(binary())
         .args(["sweep", "--kernels", kernels, "--format", "csv", "--request"])
         .arg(path)
         .output()
@@ -92,7 +99,7 @@ fn both_kernels_give_the_same_bytes() {
 
 #[test]
 fn an_unknown_kernel_is_refused() {
-    let out = Command::new(env!("CARGO_BIN_EXE_restitution"))
+    let out = Command::new(binary())
         .args(["openapi", "--kernels", "avx512"])
         .output()
         .unwrap();
