@@ -24,7 +24,7 @@ initial slip v_ct (the service also handles v_ct = 0 exactly, which this grid
 does not contain). Outputs that do not vary along the sweep (e, v_cn, V_cn)
 come out as numpy broadcasts them.
 
-Usage: python numpy_peer.py [PATH/TO/restitution] [--repetitions N]
+Usage: python numpy_peer.py [PATH/TO/restitution] [--repetitions N] [--no-check]
 """
 
 from __future__ import annotations
@@ -260,6 +260,8 @@ def main():
     parser.add_argument("binary", nargs="?", default="target/release/restitution",
                         help="the restitution binary for the cross-check")
     parser.add_argument("--repetitions", type=int, default=20)
+    parser.add_argument("--no-check", action="store_true",
+                        help="time only (benches/scripts/numpy-vs-sweep checks once, then times)")
     args = parser.parse_args()
 
     print(f"numpy {np.__version__}, python {sys.version.split()[0]}, {POINTS} points, "
@@ -270,6 +272,8 @@ def main():
         print(f"{label}: {POINTS / best / 1e6:.1f} M points/s best ({best * 1e3:.2f} ms), "
               f"{POINTS / median / 1e6:.1f} M points/s median ({median * 1e3:.2f} ms)")
 
+    if args.no_check:
+        return 0
     if not cross_check(args.binary):
         print("FAIL: numpy and the service disagree")
         return 1
