@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::Rng;
+use common::{Rng, rotation};
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, ImpactError, Lamina, Law, Outputs, PlanarContact, Precision, Regime, RigidBody,
@@ -43,39 +43,6 @@ fn random_law(rng: &mut Rng) -> Law {
     }
 }
 
-/// A random rotation matrix (from a random unit quaternion).
-fn rotation(rng: &mut Rng) -> [[f64; 3]; 3] {
-    let q = [
-        rng.range(-1.0, 1.0),
-        rng.range(-1.0, 1.0),
-        rng.range(-1.0, 1.0),
-        rng.range(-1.0, 1.0),
-    ];
-    let size = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / size);
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
-fn rotate(r: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
-}
-
 /// `R diag(moments) Rᵀ` as `[xx, yy, zz, xy, xz, yz]`.
 fn tensor(r: &[[f64; 3]; 3], moments: [f64; 3]) -> [f64; 6] {
     let entry = |i: usize, j: usize| (0..3).map(|k| r[i][k] * moments[k] * r[j][k]).sum::<f64>();
@@ -106,7 +73,7 @@ fn random_body(rng: &mut Rng) -> RigidBody {
     if rng.chance(0.2) {
         moments = [moments[0]; 3];
     }
-    let r = rotation(rng);
+    let r = rotation::random(rng);
     RigidBody {
         mass: m,
         inertia: tensor(&r, moments),
@@ -127,14 +94,14 @@ fn random_twist(rng: &mut Rng) -> Option<Twist> {
 fn random_scene(rng: &mut Rng, two: bool) -> SpatialImpact {
     let a = random_body(rng);
     let b = two.then(|| random_body(rng));
-    let r = rotation(rng);
+    let r = rotation::random(rng);
     let size = rng.log_uniform(-1.0, 1.0);
     SpatialImpact {
         a,
         b,
         contact: SpatialContact {
             point: [0; 3].map(|_| rng.range(-1.0, 1.0)),
-            normal: rotate(&r, [size, 0.0, 0.0]),
+            normal: rotation::rotate(&r, [size, 0.0, 0.0]),
         },
         law: random_law(rng),
         torsion: random_twist(rng),
@@ -579,7 +546,7 @@ fn a_rotated_scene_gives_the_rotated_answer() {
         let Ok(o) = solve(&scene, Outputs::ALL, Precision::Exact) else {
             continue;
         };
-        let r = rotation(&mut rng);
+        let r = rotation::random(&mut rng);
         let turn = |b: &RigidBody| {
             let m = matrix(&b.inertia);
             // R I Rᵀ.
@@ -594,9 +561,9 @@ fn a_rotated_scene_gives_the_rotated_answer() {
                     entry(0, 2),
                     entry(1, 2),
                 ],
-                position: rotate(&r, b.position),
-                velocity: rotate(&r, b.velocity),
-                angular_velocity: rotate(&r, b.angular_velocity),
+                position: rotation::rotate(&r, b.position),
+                velocity: rotation::rotate(&r, b.velocity),
+                angular_velocity: rotation::rotate(&r, b.angular_velocity),
                 ..*b
             }
         };
@@ -604,8 +571,8 @@ fn a_rotated_scene_gives_the_rotated_answer() {
             a: turn(&scene.a),
             b: scene.b.as_ref().map(turn),
             contact: SpatialContact {
-                point: rotate(&r, scene.contact.point),
-                normal: rotate(&r, scene.contact.normal),
+                point: rotation::rotate(&r, scene.contact.point),
+                normal: rotation::rotate(&r, scene.contact.normal),
             },
             ..scene
         };
@@ -617,7 +584,7 @@ fn a_rotated_scene_gives_the_rotated_answer() {
             continue;
         }
         checked += 1;
-        let p = rotate(&r, [o.impulse.x, o.impulse.y, o.impulse.z]);
+        let p = rotation::rotate(&r, [o.impulse.x, o.impulse.y, o.impulse.z]);
         let scale = o.impulse.normal + size(p);
         for (c, got) in [q.impulse.x, q.impulse.y, q.impulse.z].into_iter().enumerate() {
             assert!(
@@ -638,8 +605,8 @@ fn a_rotated_scene_gives_the_rotated_answer() {
         let e = (q.energy.unwrap(), o.energy.unwrap());
         assert!((e.0.loss - e.1.loss).abs() <= 1e-8 * e.1.initial, "{scene:?}");
         for k in 0..o.body_count {
-            let v = rotate(&r, o.bodies[k].velocity);
-            let w = rotate(&r, o.bodies[k].angular_velocity);
+            let v = rotation::rotate(&r, o.bodies[k].velocity);
+            let w = rotation::rotate(&r, o.bodies[k].angular_velocity);
             let sv = size(v) + size(scene.a.velocity);
             let sw = size(w) + size(o.bodies[k].angular_velocity_change) + 1e-6;
             for c in 0..3 {

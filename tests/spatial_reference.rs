@@ -197,44 +197,10 @@ fn dyadic_twist(rng: &mut Rng) -> Option<Twist> {
     })
 }
 
-/// A uniformly random rotation (a unit quaternion by rejection).
-fn rotation(rng: &mut Rng) -> [[f64; 3]; 3] {
-    let (w, x, y, z) = loop {
-        let c = [
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        ];
-        let n2: f64 = c.iter().map(|v| v * v).sum();
-        if n2 > 0.01 && n2 <= 1.0 {
-            let n = n2.sqrt();
-            break (c[0] / n, c[1] / n, c[2] / n, c[3] / n);
-        }
-    };
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - z * w),
-            2.0 * (x * z + y * w),
-        ],
-        [
-            2.0 * (x * y + z * w),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - x * w),
-        ],
-        [
-            2.0 * (x * z - y * w),
-            2.0 * (y * z + x * w),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
 /// `R diag(I₁, I₂, I₃) Rᵀ` from a random rotation, rounded to f64 (the
 /// rounded tensor is the input).
 fn rotated_tensor(rng: &mut Rng, mass: f64, length: f64) -> [f64; 6] {
-    let r = rotation(rng);
+    let r = common::rotation::uniform(rng);
     let k = [0, 1, 2].map(|_| length * rng.log_uniform(-1.0, 0.5));
     let d = k.map(|k| mass * k * k);
     let t = |i: usize, j: usize| (0..3).map(|c| r[i][c] * d[c] * r[j][c]).sum::<f64>();

@@ -19,7 +19,8 @@
 
 mod common;
 
-use common::validation::{self, Dataset, Deviation, Point, Quantity, Rotation};
+use common::rotation::Rotation;
+use common::validation::{self, Dataset, Deviation, Point, Quantity};
 use restitution::{Outputs, PlanarOutcome, PlanarVelocity, Precision, SpatialOutcome, solve};
 
 fn digitization_scatter() -> f64 {
@@ -288,7 +289,7 @@ fn shared_outputs(
     rotation: Option<&Rotation>,
     k: Scales,
 ) -> Vec<(&'static str, f64, f64, f64)> {
-    let back = |v: [f64; 3]| rotation.map_or(v, |r| validation::rotate_back(r, v));
+    let back = |v: [f64; 3]| rotation.map_or(v, |r| common::rotation::rotate_back(r, v));
     let body = &s.bodies[0];
     let (pe, se) = (p.energy.expect("energies"), s.energy.expect("energies"));
     let mut rows = Vec::new();
@@ -451,7 +452,7 @@ fn kharaz_in_a_rotated_scene_is_the_planar_answer_to_a_few_ulps() {
         [0.5, 0.5, -0.6, -0.1],
     ];
     for (et, q) in kharaz_variants(&d).into_iter().zip(quaternions) {
-        let r = validation::rotation(q);
+        let r = common::rotation::from_quaternion(q);
         for &x in &xs {
             let v = d.velocity(drive, x);
             let p = solve(&d.planar(v, et), Outputs::ALL, Precision::Exact).expect("a planar answer");

@@ -9,6 +9,7 @@ pub mod plain;
 pub mod process;
 pub mod reference;
 mod rng;
+pub mod rotation;
 pub mod server;
 pub mod spatial_reference;
 pub mod sweep_rows;

@@ -10,6 +10,7 @@
 //! values come from the sweep engine (`restitution::sweep`), one zipped sweep
 //! over the initial velocities per curve.
 
+use super::rotation::{Rotation, rotate};
 use std::collections::BTreeMap;
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
@@ -586,42 +587,6 @@ impl Dataset {
         }
         (a + b) / 2.0
     }
-}
-
-/// A rotation matrix, by rows.
-pub type Rotation = [[f64; 3]; 3];
-
-/// The rotation of the unit quaternion along `q` (normalised here; rounds).
-pub fn rotation(q: [f64; 4]) -> Rotation {
-    let size = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / size);
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
-/// `r v`.
-pub fn rotate(r: &Rotation, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
-}
-
-/// `rᵀ v`: back to the unrotated frame.
-pub fn rotate_back(r: &Rotation, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| r[0][i] * v[0] + r[1][i] * v[1] + r[2][i] * v[2])
 }
 
 /// A solid sphere of radius `radius` and unit mass (`I = 2/5 m R²` as a
