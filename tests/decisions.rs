@@ -1,4 +1,4 @@
-//! `fast` precision takes every decision exactly (issue 18): the regime at
+//! `fast` precision takes every decision exactly: the regime at
 //! each switch, the torsional branch, `D > 0`, `T_L ≥ 0`, approaching or not.
 //!
 //! The adversarial sets: for random scenes of every case and law, and for each

@@ -1,5 +1,5 @@
 //! The explorer: a page at `/` and its assets at `/assets/…`, for people who
-//! would rather set a scene than write JSON (issue 20). Plain HTML, CSS and
+//! would rather set a scene than write JSON. Plain HTML, CSS and
 //! vanilla JavaScript modules, embedded in the binary (no CDN, no font, no
 //! build step); the page calls the API under `/v1` like any client. It is not
 //! API: it is routed outside the OpenAPI document and outside the API key
