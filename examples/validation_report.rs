@@ -10,6 +10,9 @@
 //! ```
 
 #[allow(dead_code)]
+#[path = "../tests/common/rotation.rs"]
+mod rotation;
+#[allow(dead_code)]
 #[path = "../tests/common/validation.rs"]
 mod validation;
 

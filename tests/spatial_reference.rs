@@ -200,7 +200,7 @@ fn dyadic_twist(rng: &mut Rng) -> Option<Twist> {
 /// `R diag(I₁, I₂, I₃) Rᵀ` from a random rotation, rounded to f64 (the
 /// rounded tensor is the input).
 fn rotated_tensor(rng: &mut Rng, mass: f64, length: f64) -> [f64; 6] {
-    let r = common::rotation::uniform(rng);
+    let r = common::rotation::uniform(|| rng.range(-1.0, 1.0));
     let k = [0, 1, 2].map(|_| length * rng.log_uniform(-1.0, 0.5));
     let d = k.map(|k| mass * k * k);
     let t = |i: usize, j: usize| (0..3).map(|c| r[i][c] * d[c] * r[j][c]).sum::<f64>();

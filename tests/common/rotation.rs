@@ -1,7 +1,5 @@
 //! Rotations, for the tests that turn a scene in space.
 
-use super::Rng;
-
 /// A rotation matrix, by rows.
 pub type Rotation = [[f64; 3]; 3];
 
@@ -38,16 +36,17 @@ pub fn rotate_back(r: &Rotation, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| r[0][i] * v[0] + r[1][i] * v[1] + r[2][i] * v[2])
 }
 
-/// A random rotation: the quaternion's four components uniform in [-1, 1].
-pub fn random(rng: &mut Rng) -> Rotation {
-    from_quaternion(std::array::from_fn(|_| rng.range(-1.0, 1.0)))
+/// A random rotation: the quaternion's four components drawn by `draw`
+/// (uniform in [-1, 1]).
+pub fn random(mut draw: impl FnMut() -> f64) -> Rotation {
+    from_quaternion(std::array::from_fn(|_| draw()))
 }
 
 /// A uniformly random rotation: a quaternion drawn uniformly from the unit
-/// ball (by rejection, away from the origin).
-pub fn uniform(rng: &mut Rng) -> Rotation {
+/// ball (by rejection, away from the origin); `draw` is uniform in [-1, 1].
+pub fn uniform(mut draw: impl FnMut() -> f64) -> Rotation {
     loop {
-        let q: [f64; 4] = std::array::from_fn(|_| rng.range(-1.0, 1.0));
+        let q: [f64; 4] = std::array::from_fn(|_| draw());
         let n2: f64 = q.iter().map(|v| v * v).sum();
         if n2 > 0.01 && n2 <= 1.0 {
             break from_quaternion(q);
