@@ -375,18 +375,7 @@ impl MakeRequestId for SequentialId {
                 *block = bytes::BytesMut::with_capacity(4096);
             }
             block.extend_from_slice(PROCESS_TAG.as_bytes());
-            let mut digits = [0u8; 20];
-            let mut i = digits.len();
-            let mut rest = n;
-            loop {
-                i -= 1;
-                digits[i] = b'0' + (rest % 10) as u8;
-                rest /= 10;
-                if rest == 0 {
-                    break;
-                }
-            }
-            block.extend_from_slice(&digits[i..]);
+            block.extend_from_slice(itoa::Buffer::new().format(n).as_bytes());
             block.split().freeze()
         });
         HeaderValue::from_maybe_shared(value).ok().map(RequestId::new)
