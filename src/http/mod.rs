@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use axum::extract::{DefaultBodyLimit, Request, State};
-use axum::http::{HeaderValue, StatusCode};
+use axum::http::{HeaderName, HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::{Json, Router};
@@ -133,7 +133,7 @@ async fn healthz() -> Json<Health> {
 }
 
 /// The routes behind the middleware stack (load shedding included).
-fn served_routes() -> OpenApiRouter {
+fn served_routes() -> OpenApiRouter<Shared> {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(impacts::router())
         .merge(sweeps::router())
@@ -145,10 +145,37 @@ fn served_routes() -> OpenApiRouter {
 /// metrics, which the application serves outside the stack so that a
 /// saturated service still answers them (a shed liveness probe would have
 /// the orchestrator restart the busiest replicas).
-fn routes() -> OpenApiRouter {
+fn routes() -> OpenApiRouter<Shared> {
     served_routes()
         .routes(routes!(healthz))
         .routes(routes!(telemetry::metrics))
+}
+
+/// What the handlers share, as the router's state (a field of the state
+/// costs nothing per request; a request extension is a map insert).
+#[derive(Debug, Clone)]
+struct Shared {
+    config: Arc<ServiceConfig>,
+    streams: sweeps::Streams,
+    telemetry: telemetry::Telemetry,
+}
+
+impl axum::extract::FromRef<Shared> for Arc<ServiceConfig> {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.config.clone()
+    }
+}
+
+impl axum::extract::FromRef<Shared> for sweeps::Streams {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.streams.clone()
+    }
+}
+
+impl axum::extract::FromRef<Shared> for telemetry::Telemetry {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.telemetry.clone()
+    }
 }
 
 /// The OpenAPI 3.1 document generated from the code, for a service without
@@ -195,52 +222,64 @@ pub struct AppState {
 
 /// The application with the given state (tests keep a handle on it).
 pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
+    let shared = Shared {
+        config: Arc::new(config.clone()),
+        streams: state.streams,
+        telemetry: state.telemetry.clone(),
+    };
     let (router, _) = served_routes().split_for_parts();
     let router = router
-        .layer(axum::Extension(state.streams))
+        .with_state(shared)
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)))
         .merge(web::router());
     state.telemetry.set_recording(config.metrics);
-    // The probes outside the stack; the telemetry outermost, so that every
-    // layer (the metrics middleware, the shedding answer) sees it.
-    with_middleware(router, config)
+    // The probes outside the stack.
+    stack(router, config, Some(state.telemetry.clone()))
         .route(HEALTHZ, axum::routing::get(healthz))
-        .route("/metrics", axum::routing::get(telemetry::metrics))
-        .layer(axum::Extension(state.telemetry))
+        .route(
+            "/metrics",
+            axum::routing::get(telemetry::metrics).with_state(state.telemetry),
+        )
 }
 
 /// Wraps `router` in the service's middleware and fallbacks (request ids,
 /// access log, panic guard, load shedding, timeout, body limit, API key,
-/// CORS). The load-test harness serves its baseline handler through this too.
+/// CORS). The load-test harness serves its baseline handler through this too;
+/// its requests are logged, not counted in metrics.
 pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
-    let limits = Arc::new(config.clone());
+    stack(router, config, None)
+}
+
+/// [`with_middleware`], the requests recorded in `telemetry` if given.
+///
+/// `Router::layer` wraps every route in what it is given, boxed, and each
+/// request clones its route's box, every layer inside it: so the whole stack
+/// is given in one call (one box, one clone per request), not layer by layer.
+fn stack(router: Router, config: &ServiceConfig, telemetry: Option<telemetry::Telemetry>) -> Router {
     let router = router
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
-        .layer(DefaultBodyLimit::max(config.body_limit))
-        .layer(axum::Extension(limits))
-        .layer(layers::DeadlineLayer {
-            limit_ms: config.request_timeout_ms,
-        })
         .layer(
             ServiceBuilder::new()
                 .layer(SetRequestIdLayer::new(
-                    REQUEST_ID.parse().expect("valid header"),
+                    HeaderName::from_static(REQUEST_ID),
                     SequentialId::default(),
                 ))
-                .layer(PropagateRequestIdLayer::new(
-                    REQUEST_ID.parse().expect("valid header"),
-                ))
+                .layer(PropagateRequestIdLayer::new(HeaderName::from_static(REQUEST_ID)))
                 .layer(SetResponseHeaderLayer::overriding(
                     axum::http::header::X_CONTENT_TYPE_OPTIONS,
                     HeaderValue::from_static("nosniff"),
                 ))
-                .layer(layers::ObserveLayer)
+                .layer(layers::ObserveLayer { telemetry })
                 .layer(CatchPanicLayer::custom(panic_response))
                 // One semaphore for every route: `Router::layer` applies the
                 // stack to each route, and a plain concurrency limit would
                 // give each route its own.
-                .layer(layers::ShedLayer::new(config.concurrency_limit)),
+                .layer(layers::ShedLayer::new(config.concurrency_limit))
+                .layer(layers::DeadlineLayer {
+                    limit_ms: config.request_timeout_ms,
+                })
+                .layer(DefaultBodyLimit::max(config.body_limit)),
         );
     let router = match &config.api_key {
         Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
