@@ -18,6 +18,7 @@ pub mod problem;
 pub mod spatial;
 pub mod sweeps;
 pub mod telemetry;
+mod watchdog;
 pub mod web;
 
 use std::sync::Arc;
@@ -487,7 +488,7 @@ pub async fn serve_router_until(
     config: &ServiceConfig,
     signal: impl std::future::Future<Output = ()>,
 ) -> std::io::Result<()> {
-    use hyper_util::rt::{TokioExecutor, TokioIo, TokioTimer};
+    use hyper_util::rt::{TokioExecutor, TokioIo};
     use hyper_util::server::conn::auto;
     use hyper_util::server::graceful::GracefulShutdown;
     use hyper_util::service::TowerToHyperService;
@@ -497,10 +498,10 @@ pub async fn serve_router_until(
     // and shared, not rebuilt per request.
     let router: Router = router.with_state(());
     let mut builder = auto::Builder::new(TokioExecutor::new());
-    builder
-        .http1()
-        .timer(TokioTimer::new())
-        .header_read_timeout(Duration::from_millis(config.header_read_timeout_ms));
+    // The header-read timeout is the connection's watchdog's (`watchdog`),
+    // not a timer hyper would arm for every request head.
+    builder.http1().header_read_timeout(None);
+    let header_timeout = Duration::from_millis(config.header_read_timeout_ms);
     let graceful = GracefulShutdown::new();
     tokio::pin!(signal);
     loop {
@@ -516,12 +517,18 @@ pub async fn serve_router_until(
                     }
                 };
                 let _ = stream.set_nodelay(true);
-                let service = TowerToHyperService::new(router.clone());
+                let watch = watchdog::Watch::new();
+                let service = TowerToHyperService::new(watchdog::Watched {
+                    inner: router.clone(),
+                    watch: watch.clone(),
+                });
                 let connection = builder.serve_connection_with_upgrades(TokioIo::new(stream), service);
                 let connection = graceful.watch(connection.into_owned());
                 tokio::spawn(async move {
-                    if let Err(error) = connection.await {
-                        tracing::debug!(%error, "connection ended with an error");
+                    match watchdog::watch(connection, watch, header_timeout).await {
+                        Some(Ok(())) => {}
+                        Some(Err(error)) => tracing::debug!(%error, "connection ended with an error"),
+                        None => tracing::debug!("no complete request head within the header-read timeout; connection closed"),
                     }
                 });
             }
