@@ -427,6 +427,105 @@ async fn slow_headers_are_cut_off_and_slow_bodies_get_408() {
     still_serving(&app).await;
 }
 
+/// Reads one HTTP/1.1 answer with a `content-length` from `stream`; `None`
+/// if the connection closed first.
+async fn read_answer(stream: &mut TcpStream) -> Option<String> {
+    let mut answer = Vec::new();
+    loop {
+        if let Some(end) = answer.windows(4).position(|w| w == b"\r\n\r\n") {
+            let head = String::from_utf8_lossy(&answer[..end]).to_ascii_lowercase();
+            let length: usize = head
+                .lines()
+                .find_map(|line| line.strip_prefix("content-length:"))
+                .map(|v| v.trim().parse().unwrap())
+                .unwrap_or(0);
+            if answer.len() >= end + 4 + length {
+                return Some(String::from_utf8_lossy(&answer).into_owned());
+            }
+        }
+        let mut buffer = [0u8; 4096];
+        match timeout(BOUND, stream.read(&mut buffer))
+            .await
+            .expect("read in time")
+        {
+            Ok(0) | Err(_) => return None,
+            Ok(n) => answer.extend_from_slice(&buffer[..n]),
+        }
+    }
+}
+
+/// The header-read timeout runs from a connection's start or the end of its
+/// last answer: a keep-alive connection busy for longer than the timeout in
+/// all is served throughout; one idle for longer is closed.
+#[tokio::test]
+async fn the_header_timeout_spares_a_busy_keep_alive_connection_and_closes_an_idle_one() {
+    let config = ServiceConfig {
+        header_read_timeout_ms: 300,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let body = serde_json::to_vec(&normal_request()).unwrap();
+    let request = format!(
+        "POST /v1/impacts/normal HTTP/1.1\r\nhost: x\r\ncontent-type: application/json\r\n\
+         content-length: {}\r\n\r\n{}",
+        body.len(),
+        String::from_utf8(body).unwrap()
+    );
+    let mut stream = TcpStream::connect(app.addr).await.unwrap();
+    // Ten requests 100 ms apart: a second in all, on one connection.
+    for _ in 0..10 {
+        stream.write_all(request.as_bytes()).await.unwrap();
+        let answer = read_answer(&mut stream)
+            .await
+            .expect("answered on the same connection");
+        assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    // Idle past the timeout: closed.
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    let mut probe = [0u8; 64];
+    let read = timeout(BOUND, stream.read(&mut probe))
+        .await
+        .expect("closed in time");
+    assert!(matches!(read, Ok(0) | Err(_)), "{read:?}");
+    still_serving(&app).await;
+}
+
+/// A streamed answer longer than the header-read timeout is not cut: the
+/// timeout runs only while a connection waits for a request head.
+#[tokio::test]
+async fn a_stream_longer_than_the_header_timeout_is_not_cut() {
+    let config = ServiceConfig {
+        header_read_timeout_ms: 200,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let body = serde_json::to_vec(&json!({
+        "case": "normal", "base": normal_request(),
+        "axes": [{"path": "/velocity/normal", "linspace": {"start": -5.0, "stop": -1.0, "count": 10_000_000}}]
+    }))
+    .unwrap();
+    let mut stream = TcpStream::connect(app.addr).await.unwrap();
+    let head = format!(
+        "POST /v1/sweeps HTTP/1.1\r\nhost: x\r\naccept: text/csv\r\ncontent-type: application/json\r\n\
+         content-length: {}\r\n\r\n",
+        body.len()
+    );
+    stream.write_all(head.as_bytes()).await.unwrap();
+    stream.write_all(&body).await.unwrap();
+    // Read slowly for three times the timeout: data keeps coming.
+    let start = std::time::Instant::now();
+    let mut buffer = vec![0u8; 4096];
+    while start.elapsed() < Duration::from_millis(600) {
+        let n = timeout(BOUND, stream.read(&mut buffer)).await.unwrap().unwrap();
+        assert!(n > 0, "the stream was cut after {:?}", start.elapsed());
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert_eq!(app.streams.active(), 1, "still streaming");
+    drop(stream);
+    app.until_sweeps_stop().await;
+}
+
 #[tokio::test]
 async fn a_reader_that_stops_reading_a_stream_is_dropped_and_its_work_stops() {
     let config = ServiceConfig {

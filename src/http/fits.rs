@@ -18,7 +18,7 @@ use crate::impact::{Lamina, PlanarContact};
 use crate::scene::Body;
 
 /// The fit endpoints, with their OpenAPI operations.
-pub fn router() -> OpenApiRouter {
+pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
     OpenApiRouter::new()
         .routes(routes!(fits_tangential))
         .routes(routes!(fits_torsional))

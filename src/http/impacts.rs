@@ -20,7 +20,7 @@ use crate::outcome::Outputs;
 use crate::scene::PlanarVelocity;
 
 /// The impact endpoints, with their OpenAPI operations.
-pub fn router() -> OpenApiRouter {
+pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
     OpenApiRouter::new()
         .routes(routes!(impacts_normal))
         .routes(routes!(impacts_oblique))

@@ -23,17 +23,24 @@ use tracing::Level;
 
 use super::log;
 use super::problem::ApiError;
-use super::telemetry::{self, Recording};
+use super::telemetry::{self, Recording, Telemetry};
 
-/// Logs each request (one line, at its status's level) and records its metrics.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct ObserveLayer;
+/// Logs each request (one line, at its status's level) and records its
+/// metrics in `telemetry` (none: not recorded, as for the load test's
+/// baseline).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ObserveLayer {
+    pub(crate) telemetry: Option<Telemetry>,
+}
 
 impl<S> Layer<S> for ObserveLayer {
     type Service = Observe<S>;
 
     fn layer(&self, inner: S) -> Observe<S> {
-        Observe { inner }
+        Observe {
+            inner,
+            telemetry: self.telemetry.clone(),
+        }
     }
 }
 
@@ -41,6 +48,7 @@ impl<S> Layer<S> for ObserveLayer {
 #[derive(Debug, Clone)]
 pub(crate) struct Observe<S> {
     inner: S,
+    telemetry: Option<Telemetry>,
 }
 
 /// What the access line needs of the request: clones that share its buffers
@@ -72,7 +80,10 @@ where
             method: request.method().clone(),
             uri: request.uri().clone(),
         };
-        let recording = Recording::start(&request);
+        let recording = self
+            .telemetry
+            .as_ref()
+            .and_then(|t| Recording::start(t, &request));
         let start = Instant::now();
         ObserveFuture {
             inner: self.inner.call(request),

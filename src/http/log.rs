@@ -377,21 +377,12 @@ fn write_decimal(buffer: &mut Vec<u8>, n: u64) {
 
 /// `n` in decimal with at least `width` digits.
 fn write_padded(buffer: &mut Vec<u8>, n: u64, width: usize) {
-    let mut digits = [0u8; 20];
-    let mut i = digits.len();
-    let mut rest = n;
-    loop {
-        i -= 1;
-        digits[i] = b'0' + (rest % 10) as u8;
-        rest /= 10;
-        if rest == 0 {
-            break;
-        }
-    }
-    for _ in digits.len() - i..width {
+    let mut digits = itoa::Buffer::new();
+    let digits = digits.format(n).as_bytes();
+    for _ in digits.len()..width {
         buffer.push(b'0');
     }
-    buffer.extend_from_slice(&digits[i..]);
+    buffer.extend_from_slice(digits);
 }
 
 /// `time` as RFC 3339 in UTC with microseconds (`2026-11-25T20:54:26.123456Z`),

@@ -18,6 +18,7 @@ pub mod problem;
 pub mod spatial;
 pub mod sweeps;
 pub mod telemetry;
+mod watchdog;
 pub mod web;
 
 use std::sync::Arc;
@@ -25,7 +26,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use axum::extract::{DefaultBodyLimit, Request, State};
-use axum::http::{HeaderValue, StatusCode};
+use axum::http::{HeaderName, HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::{Json, Router};
@@ -133,7 +134,7 @@ async fn healthz() -> Json<Health> {
 }
 
 /// The routes behind the middleware stack (load shedding included).
-fn served_routes() -> OpenApiRouter {
+fn served_routes() -> OpenApiRouter<Shared> {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(impacts::router())
         .merge(sweeps::router())
@@ -145,10 +146,37 @@ fn served_routes() -> OpenApiRouter {
 /// metrics, which the application serves outside the stack so that a
 /// saturated service still answers them (a shed liveness probe would have
 /// the orchestrator restart the busiest replicas).
-fn routes() -> OpenApiRouter {
+fn routes() -> OpenApiRouter<Shared> {
     served_routes()
         .routes(routes!(healthz))
         .routes(routes!(telemetry::metrics))
+}
+
+/// What the handlers share, as the router's state (a field of the state
+/// costs nothing per request; a request extension is a map insert).
+#[derive(Debug, Clone)]
+struct Shared {
+    config: Arc<ServiceConfig>,
+    streams: sweeps::Streams,
+    telemetry: telemetry::Telemetry,
+}
+
+impl axum::extract::FromRef<Shared> for Arc<ServiceConfig> {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.config.clone()
+    }
+}
+
+impl axum::extract::FromRef<Shared> for sweeps::Streams {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.streams.clone()
+    }
+}
+
+impl axum::extract::FromRef<Shared> for telemetry::Telemetry {
+    fn from_ref(shared: &Shared) -> Self {
+        shared.telemetry.clone()
+    }
 }
 
 /// The OpenAPI 3.1 document generated from the code, for a service without
@@ -195,52 +223,64 @@ pub struct AppState {
 
 /// The application with the given state (tests keep a handle on it).
 pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
+    let shared = Shared {
+        config: Arc::new(config.clone()),
+        streams: state.streams,
+        telemetry: state.telemetry.clone(),
+    };
     let (router, _) = served_routes().split_for_parts();
     let router = router
-        .layer(axum::Extension(state.streams))
+        .with_state(shared)
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)))
         .merge(web::router());
     state.telemetry.set_recording(config.metrics);
-    // The probes outside the stack; the telemetry outermost, so that every
-    // layer (the metrics middleware, the shedding answer) sees it.
-    with_middleware(router, config)
+    // The probes outside the stack.
+    stack(router, config, Some(state.telemetry.clone()))
         .route(HEALTHZ, axum::routing::get(healthz))
-        .route("/metrics", axum::routing::get(telemetry::metrics))
-        .layer(axum::Extension(state.telemetry))
+        .route(
+            "/metrics",
+            axum::routing::get(telemetry::metrics).with_state(state.telemetry),
+        )
 }
 
 /// Wraps `router` in the service's middleware and fallbacks (request ids,
 /// access log, panic guard, load shedding, timeout, body limit, API key,
-/// CORS). The load-test harness serves its baseline handler through this too.
+/// CORS). The load-test harness serves its baseline handler through this too;
+/// its requests are logged, not counted in metrics.
 pub fn with_middleware(router: Router, config: &ServiceConfig) -> Router {
-    let limits = Arc::new(config.clone());
+    stack(router, config, None)
+}
+
+/// [`with_middleware`], the requests recorded in `telemetry` if given.
+///
+/// `Router::layer` wraps every route in what it is given, boxed, and each
+/// request clones its route's box, every layer inside it: so the whole stack
+/// is given in one call (one box, one clone per request), not layer by layer.
+fn stack(router: Router, config: &ServiceConfig, telemetry: Option<telemetry::Telemetry>) -> Router {
     let router = router
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
-        .layer(DefaultBodyLimit::max(config.body_limit))
-        .layer(axum::Extension(limits))
-        .layer(layers::DeadlineLayer {
-            limit_ms: config.request_timeout_ms,
-        })
         .layer(
             ServiceBuilder::new()
                 .layer(SetRequestIdLayer::new(
-                    REQUEST_ID.parse().expect("valid header"),
+                    HeaderName::from_static(REQUEST_ID),
                     SequentialId::default(),
                 ))
-                .layer(PropagateRequestIdLayer::new(
-                    REQUEST_ID.parse().expect("valid header"),
-                ))
+                .layer(PropagateRequestIdLayer::new(HeaderName::from_static(REQUEST_ID)))
                 .layer(SetResponseHeaderLayer::overriding(
                     axum::http::header::X_CONTENT_TYPE_OPTIONS,
                     HeaderValue::from_static("nosniff"),
                 ))
-                .layer(layers::ObserveLayer)
+                .layer(layers::ObserveLayer { telemetry })
                 .layer(CatchPanicLayer::custom(panic_response))
                 // One semaphore for every route: `Router::layer` applies the
                 // stack to each route, and a plain concurrency limit would
                 // give each route its own.
-                .layer(layers::ShedLayer::new(config.concurrency_limit)),
+                .layer(layers::ShedLayer::new(config.concurrency_limit))
+                .layer(layers::DeadlineLayer {
+                    limit_ms: config.request_timeout_ms,
+                })
+                .layer(DefaultBodyLimit::max(config.body_limit)),
         );
     let router = match &config.api_key {
         Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
@@ -375,18 +415,7 @@ impl MakeRequestId for SequentialId {
                 *block = bytes::BytesMut::with_capacity(4096);
             }
             block.extend_from_slice(PROCESS_TAG.as_bytes());
-            let mut digits = [0u8; 20];
-            let mut i = digits.len();
-            let mut rest = n;
-            loop {
-                i -= 1;
-                digits[i] = b'0' + (rest % 10) as u8;
-                rest /= 10;
-                if rest == 0 {
-                    break;
-                }
-            }
-            block.extend_from_slice(&digits[i..]);
+            block.extend_from_slice(itoa::Buffer::new().format(n).as_bytes());
             block.split().freeze()
         });
         HeaderValue::from_maybe_shared(value).ok().map(RequestId::new)
@@ -459,7 +488,7 @@ pub async fn serve_router_until(
     config: &ServiceConfig,
     signal: impl std::future::Future<Output = ()>,
 ) -> std::io::Result<()> {
-    use hyper_util::rt::{TokioExecutor, TokioIo, TokioTimer};
+    use hyper_util::rt::{TokioExecutor, TokioIo};
     use hyper_util::server::conn::auto;
     use hyper_util::server::graceful::GracefulShutdown;
     use hyper_util::service::TowerToHyperService;
@@ -469,10 +498,10 @@ pub async fn serve_router_until(
     // and shared, not rebuilt per request.
     let router: Router = router.with_state(());
     let mut builder = auto::Builder::new(TokioExecutor::new());
-    builder
-        .http1()
-        .timer(TokioTimer::new())
-        .header_read_timeout(Duration::from_millis(config.header_read_timeout_ms));
+    // The header-read timeout is the connection's watchdog's (`watchdog`),
+    // not a timer hyper would arm for every request head.
+    builder.http1().header_read_timeout(None);
+    let header_timeout = Duration::from_millis(config.header_read_timeout_ms);
     let graceful = GracefulShutdown::new();
     tokio::pin!(signal);
     loop {
@@ -488,12 +517,18 @@ pub async fn serve_router_until(
                     }
                 };
                 let _ = stream.set_nodelay(true);
-                let service = TowerToHyperService::new(router.clone());
+                let watch = watchdog::Watch::new();
+                let service = TowerToHyperService::new(watchdog::Watched {
+                    inner: router.clone(),
+                    watch: watch.clone(),
+                });
                 let connection = builder.serve_connection_with_upgrades(TokioIo::new(stream), service);
                 let connection = graceful.watch(connection.into_owned());
                 tokio::spawn(async move {
-                    if let Err(error) = connection.await {
-                        tracing::debug!(%error, "connection ended with an error");
+                    match watchdog::watch(connection, watch, header_timeout).await {
+                        Some(Ok(())) => {}
+                        Some(Err(error)) => tracing::debug!(%error, "connection ended with an error"),
+                        None => tracing::debug!("no complete request head within the header-read timeout; connection closed"),
                     }
                 });
             }

@@ -12,10 +12,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use axum::extract::{MatchedPath, Request};
+use axum::Json;
+use axum::extract::{MatchedPath, Request, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use axum::{Extension, Json};
 use prometheus_client::encoding::EncodeLabelSet;
 use prometheus_client::metrics::counter::Counter;
 use prometheus_client::metrics::family::Family;
@@ -26,8 +26,8 @@ use serde::Serialize;
 use utoipa::ToSchema;
 
 /// A request's route (its matched path, or `unmatched`), method and status.
-/// `Arc<str>` and `Method` share the request's own buffers: looking a series
-/// up allocates nothing.
+/// The route shares the router's own path and `Method` the request's: looking
+/// a series up allocates nothing.
 #[derive(Debug, Clone, Hash, PartialEq, Eq, EncodeLabelSet)]
 struct RequestLabels {
     route: Route,
@@ -41,16 +41,43 @@ struct RouteLabels {
     route: Route,
 }
 
-/// A route label: the matched path (shared with axum's `MatchedPath`).
-#[derive(Debug, Clone, Hash, PartialEq, Eq)]
-struct Route(Arc<str>);
+/// A route label: the matched path (axum's `MatchedPath`, a shared string
+/// of the router's), or `unmatched` for a request no route took.
+#[derive(Debug, Clone)]
+enum Route {
+    Matched(MatchedPath),
+    Unmatched,
+}
+
+impl Route {
+    fn as_str(&self) -> &str {
+        match self {
+            Route::Matched(path) => path.as_str(),
+            Route::Unmatched => "unmatched",
+        }
+    }
+}
+
+impl PartialEq for Route {
+    fn eq(&self, other: &Route) -> bool {
+        self.as_str() == other.as_str()
+    }
+}
+
+impl Eq for Route {}
+
+impl std::hash::Hash for Route {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.as_str().hash(state);
+    }
+}
 
 impl prometheus_client::encoding::EncodeLabelValue for Route {
     fn encode(
         &self,
         encoder: &mut prometheus_client::encoding::LabelValueEncoder<'_>,
     ) -> Result<(), std::fmt::Error> {
-        std::fmt::Write::write_str(encoder, &self.0)
+        std::fmt::Write::write_str(encoder, self.as_str())
     }
 }
 
@@ -65,24 +92,6 @@ impl prometheus_client::encoding::EncodeLabelValue for MethodLabel {
     ) -> Result<(), std::fmt::Error> {
         std::fmt::Write::write_str(encoder, self.0.as_str())
     }
-}
-
-/// The routes met so far, shared as labels: a route's label is looked up,
-/// not allocated, per request (the service has a few dozen routes).
-static ROUTES: std::sync::RwLock<Vec<Arc<str>>> = std::sync::RwLock::new(Vec::new());
-
-fn route_label(path: &str) -> Route {
-    let known = |routes: &[Arc<str>]| routes.iter().find(|r| &***r == path).cloned();
-    if let Some(r) = known(&ROUTES.read().unwrap_or_else(|e| e.into_inner())) {
-        return Route(r);
-    }
-    let mut routes = ROUTES.write().unwrap_or_else(|e| e.into_inner());
-    if let Some(r) = known(&routes) {
-        return Route(r);
-    }
-    let r: Arc<str> = Arc::from(path);
-    routes.push(r.clone());
-    Route(r)
 }
 
 /// A sweep's case and precision.
@@ -267,23 +276,19 @@ pub(crate) struct Recording {
 }
 
 impl Recording {
-    /// Starts recording `request`; `None` for a router without telemetry
-    /// (the load test's baseline) or with the recording off.
-    pub(crate) fn start(request: &Request) -> Option<Recording> {
-        let telemetry = request
-            .extensions()
-            .get::<Telemetry>()
-            .filter(|t| t.0.recording.load(Ordering::Relaxed))?
-            .clone();
-        let route = route_label(
-            request
-                .extensions()
-                .get::<MatchedPath>()
-                .map_or("unmatched", |p| p.as_str()),
-        );
+    /// Starts recording `request` for `telemetry`; `None` with the recording
+    /// off.
+    pub(crate) fn start(telemetry: &Telemetry, request: &Request) -> Option<Recording> {
+        if !telemetry.0.recording.load(Ordering::Relaxed) {
+            return None;
+        }
+        let route = match request.extensions().get::<MatchedPath>() {
+            Some(path) => Route::Matched(path.clone()),
+            None => Route::Unmatched,
+        };
         telemetry.0.in_flight.inc();
         Some(Recording {
-            telemetry,
+            telemetry: telemetry.clone(),
             route,
             method: MethodLabel(request.method().clone()),
         })
@@ -332,8 +337,8 @@ pub struct Readiness {
     (status = 200, description = "Ready for traffic", body = Readiness),
     (status = 503, description = "Draining for shutdown, or shedding load", body = Readiness),
 ))]
-pub(crate) async fn readyz(telemetry: Option<Extension<Telemetry>>) -> Response {
-    match telemetry.and_then(|Extension(t)| t.not_ready()) {
+pub(crate) async fn readyz(State(telemetry): State<Telemetry>) -> Response {
+    match telemetry.not_ready() {
         None => Json(Readiness { status: "ready" }).into_response(),
         Some(status) => (StatusCode::SERVICE_UNAVAILABLE, Json(Readiness { status })).into_response(),
     }
@@ -343,8 +348,8 @@ pub(crate) async fn readyz(telemetry: Option<Extension<Telemetry>>) -> Response 
 #[utoipa::path(get, path = "/metrics", tag = "service", responses(
     (status = 200, description = "Prometheus text format", body = String, content_type = "text/plain; version=0.0.4"),
 ))]
-pub(crate) async fn metrics(telemetry: Option<Extension<Telemetry>>) -> Response {
-    let text = telemetry.map(|Extension(t)| t.encode()).unwrap_or_default();
+pub(crate) async fn metrics(State(telemetry): State<Telemetry>) -> Response {
+    let text = telemetry.encode();
     (
         [(header::CONTENT_TYPE, "text/plain; version=0.0.4; charset=utf-8")],
         text,

@@ -21,8 +21,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::Extension;
 use axum::body::Body;
+use axum::extract::{FromRef, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use utoipa_axum::router::OpenApiRouter;
@@ -52,7 +52,13 @@ use crate::sweep::{CaseSweep, Sweep};
 use prometheus_client::metrics::counter::Counter;
 
 /// The sweep endpoints (`/v1/sweeps`, `/v1/sweeps/plan`), with their OpenAPI operations.
-pub fn router() -> OpenApiRouter {
+pub fn router<S>() -> OpenApiRouter<S>
+where
+    S: Clone + Send + Sync + 'static,
+    Arc<ServiceConfig>: FromRef<S>,
+    Streams: FromRef<S>,
+    Telemetry: FromRef<S>,
+{
     OpenApiRouter::new()
         .routes(routes!(sweeps))
         .routes(routes!(plan::plan))
@@ -93,9 +99,9 @@ pub fn router() -> OpenApiRouter {
     )
 )]
 pub async fn sweeps(
-    Extension(config): Extension<Arc<ServiceConfig>>,
-    Extension(streams): Extension<Streams>,
-    telemetry: Option<Extension<Telemetry>>,
+    State(config): State<Arc<ServiceConfig>>,
+    State(streams): State<Streams>,
+    State(telemetry): State<Telemetry>,
     headers: HeaderMap,
     ApiJson(request): ApiJson<SweepRequest>,
 ) -> Result<Response, ApiError> {
@@ -115,7 +121,7 @@ pub async fn sweeps(
     };
     let stall = Duration::from_millis(config.sweep_stall_timeout_ms);
     let (sweep, precision) = build(&request, limit, format)?;
-    let computed = telemetry.map(|Extension(t)| t.sweep_counter(request.case.as_str(), precision.as_str()));
+    let computed = Some(telemetry.sweep_counter(request.case.as_str(), precision.as_str()));
     let answer = Answer {
         format,
         precision,

@@ -4,7 +4,8 @@
 
 use std::sync::Arc;
 
-use axum::{Extension, Json};
+use axum::Json;
+use axum::extract::State;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -77,7 +78,7 @@ pub struct SweepPlan {
     )
 )]
 pub async fn plan(
-    Extension(config): Extension<Arc<ServiceConfig>>,
+    State(config): State<Arc<ServiceConfig>>,
     ApiJson(request): ApiJson<PlanRequest>,
 ) -> Result<Json<SweepPlan>, ApiError> {
     let (sweep, _) = build(&request.sweep, u64::MAX, Format::Csv).map_err(|e| e.under("/sweep"))?;
