@@ -491,15 +491,9 @@ async fn the_header_timeout_spares_a_busy_keep_alive_connection_and_closes_an_id
     still_serving(&app).await;
 }
 
-/// A streamed answer longer than the header-read timeout is not cut: the
-/// timeout runs only while a connection waits for a request head.
-#[tokio::test]
-async fn a_stream_longer_than_the_header_timeout_is_not_cut() {
-    let config = ServiceConfig {
-        header_read_timeout_ms: 200,
-        ..ServiceConfig::default()
-    };
-    let app = spawn_app(config).await;
+/// Sends a CSV sweep of ten million points on a new connection, its answer
+/// left unread.
+async fn request_long_csv_sweep(app: &TestApp) -> TcpStream {
     let body = serde_json::to_vec(&json!({
         "case": "normal", "base": normal_request(),
         "axes": [{"path": "/velocity/normal", "linspace": {"start": -5.0, "stop": -1.0, "count": 10_000_000}}]
@@ -513,6 +507,19 @@ async fn a_stream_longer_than_the_header_timeout_is_not_cut() {
     );
     stream.write_all(head.as_bytes()).await.unwrap();
     stream.write_all(&body).await.unwrap();
+    stream
+}
+
+/// A streamed answer longer than the header-read timeout is not cut: the
+/// timeout runs only while a connection waits for a request head.
+#[tokio::test]
+async fn a_stream_longer_than_the_header_timeout_is_not_cut() {
+    let config = ServiceConfig {
+        header_read_timeout_ms: 200,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let mut stream = request_long_csv_sweep(&app).await;
     // Read slowly for three times the timeout: data keeps coming.
     let start = std::time::Instant::now();
     let mut buffer = vec![0u8; 4096];
@@ -533,19 +540,7 @@ async fn a_reader_that_stops_reading_a_stream_is_dropped_and_its_work_stops() {
         ..ServiceConfig::default()
     };
     let app = spawn_app(config).await;
-    let body = serde_json::to_vec(&json!({
-        "case": "normal", "base": normal_request(),
-        "axes": [{"path": "/velocity/normal", "linspace": {"start": -5.0, "stop": -1.0, "count": 10_000_000}}]
-    }))
-    .unwrap();
-    let mut stream = TcpStream::connect(app.addr).await.unwrap();
-    let head = format!(
-        "POST /v1/sweeps HTTP/1.1\r\nhost: x\r\naccept: text/csv\r\ncontent-type: application/json\r\n\
-         content-length: {}\r\n\r\n",
-        body.len()
-    );
-    stream.write_all(head.as_bytes()).await.unwrap();
-    stream.write_all(&body).await.unwrap();
+    let mut stream = request_long_csv_sweep(&app).await;
     let mut first = vec![0u8; 4096];
     let n = timeout(BOUND, stream.read(&mut first)).await.unwrap().unwrap();
     assert!(String::from_utf8_lossy(&first[..n]).starts_with("HTTP/1.1 200"));
