@@ -1,7 +1,9 @@
 //! Sweep throughput in process: points per second on one core for the oblique
 //! (Coulomb friction) case with every output, with one output, with one output
 //! and the scene prepared once, beside a bare loop over the closed form with no
-//! validation (this machine's limit for the model); and on every core.
+//! validation (this machine's limit for the model); the same sweeps with the
+//! decisions taken on the f64 values as they are (`Arithmetic::Unfiltered`:
+//! what the error bound of `fast` costs); and on every core.
 //!
 //! The torsional case (spin swept, every output) beside a bare loop over
 //! `restitution::solve`: the cost of the sweep's per-point checks.
@@ -13,6 +15,7 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use restitution::impact::Arithmetic;
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
     Case, Contact, Input, Law, Output, Outputs, PlanarBody, PlanarImpact, PlanarVelocity, Precision,
@@ -46,12 +49,22 @@ fn base() -> PlanarImpact {
 }
 
 fn sweep(param: Input, columns: &[Output], points: u64) -> Sweep<CaseSweep<PlanarImpact>> {
+    sweep_in(param, columns, points, Arithmetic::Fast)
+}
+
+/// The same in one arithmetic.
+fn sweep_in(
+    param: Input,
+    columns: &[Output],
+    points: u64,
+    arithmetic: Arithmetic,
+) -> Sweep<CaseSweep<PlanarImpact>> {
     let (start, stop) = match param {
         Input::Friction => (0.0, 1.0),
         _ => (-5.0, 5.0),
     };
-    let case =
-        CaseSweep::new(&base(), &[param], columns.to_vec(), Precision::Fast).expect("an input of the law");
+    let case = CaseSweep::in_arithmetic(&base(), &[param], columns.to_vec(), arithmetic)
+        .expect("an input of the law");
     let axes = vec![Axis {
         param,
         values: AxisValues::Linspace {
@@ -163,6 +176,30 @@ fn single_core(c: &mut Criterion) {
             sum
         })
     });
+    group.finish();
+
+    // The same sweeps with every decision taken on the f64 value as it is
+    // (no error bound): what the filter of `fast` costs, and the model's
+    // own cost beside the bare loop.
+    let mut group = c.benchmark_group("sweep_oblique_one_core_unfiltered");
+    group.throughput(Throughput::Elements(POINTS));
+    group.sample_size(20);
+    let all = sweep_in(Input::TangentialVelocity, ALL, POINTS, Arithmetic::Unfiltered);
+    let one = sweep_in(
+        Input::TangentialVelocity,
+        &[Output::FinalTangentialContactVelocity],
+        POINTS,
+        Arithmetic::Unfiltered,
+    );
+    let fixed = sweep_in(
+        Input::Friction,
+        &[Output::FinalTangentialContactVelocity],
+        POINTS,
+        Arithmetic::Unfiltered,
+    );
+    group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
+    group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
+    group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
     group.finish();
 }
 

@@ -220,11 +220,17 @@ pub struct Solver<C: Case> {
 impl<C: Case> Solver<C> {
     /// Prepares `base`, whose `swept` inputs will change, for `outputs` in `precision`.
     pub fn new(base: &C, swept: &[Input], outputs: Outputs, precision: Precision) -> Self {
+        Solver::in_arithmetic(base, swept, outputs, precision.into())
+    }
+
+    /// The same in one `arithmetic` (for comparisons and benchmarks: what
+    /// the filter of `fast` costs a sweep is `Fast` against `Unfiltered`).
+    pub fn in_arithmetic(base: &C, swept: &[Input], outputs: Outputs, arithmetic: Arithmetic) -> Self {
         let fixed_inputs: Vec<Input> = base.reads().into_iter().filter(|i| !swept.contains(i)).collect();
         Solver {
             fixed: base.fix(swept),
             outputs,
-            arithmetic: precision.into(),
+            arithmetic,
             fixed_in_range: all_in_fast_range(base, &fixed_inputs),
             swept: swept.to_vec(),
         }

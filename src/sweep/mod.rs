@@ -20,7 +20,7 @@ use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points, shard};
 
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::{Case, Precision, Solver};
+use crate::impact::{Arithmetic, Case, Precision, Solver};
 use crate::outcome::Outputs;
 
 /// One output value of a point: a number or a name (a regime).
@@ -250,11 +250,21 @@ impl<C: Case> CaseSweep<C> {
     /// what `columns` need. Refuses (returning it) the first swept input the
     /// base impact does not read.
     pub fn new(base: &C, swept: &[Input], columns: Vec<Output>, precision: Precision) -> Result<Self, Input> {
+        CaseSweep::in_arithmetic(base, swept, columns, precision.into())
+    }
+
+    /// The same in one `arithmetic` ([`Solver::in_arithmetic`]).
+    pub fn in_arithmetic(
+        base: &C,
+        swept: &[Input],
+        columns: Vec<Output>,
+        arithmetic: Arithmetic,
+    ) -> Result<Self, Input> {
         if let Some(&unread) = swept.iter().find(|&&i| base.input(i).is_none()) {
             return Err(unread);
         }
         Ok(CaseSweep {
-            solver: Solver::new(base, swept, Outputs::needed_by(&columns), precision),
+            solver: Solver::in_arithmetic(base, swept, Outputs::needed_by(&columns), arithmetic),
             columns,
         })
     }
