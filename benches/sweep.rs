@@ -88,8 +88,9 @@ fn drive(s: &Sweep<CaseSweep<PlanarImpact>>, range: std::ops::Range<u64>) -> f64
 }
 
 /// The Coulomb-friction closed form with no validation, no error paths and no
-/// special cases: the model's arithmetic alone.
-#[inline(never)]
+/// special cases: the model's arithmetic alone (inlined into each compiled
+/// copy of the loop).
+#[inline(always)]
 fn bare(p: &PlanarImpact) -> [f64; 9] {
     let PlanarBody::Rigid {
         mass: m,
@@ -142,6 +143,37 @@ fn bare(p: &PlanarImpact) -> [f64; 9] {
     ]
 }
 
+/// The bare closed form over the sweep's points, compiled for x86-64-v3
+/// when the solver's kernels are (as the sweep's loop is), so that the two
+/// use the same instructions (hardware FMA rather than the software call).
+fn bare_sweep() -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if restitution::kernels::selected() == restitution::kernels::Kernels::X86_64V3 {
+        // SAFETY: the solver's kernels are x86-64-v3 only on a CPU with
+        // every one of these features.
+        return unsafe { bare_sweep_v3() };
+    }
+    bare_sweep_here()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,movbe,f16c,popcnt")]
+fn bare_sweep_v3() -> f64 {
+    bare_sweep_here()
+}
+
+#[inline(always)]
+fn bare_sweep_here() -> f64 {
+    let mut p = base();
+    let mut sum = 0.0;
+    for i in 0..POINTS {
+        p.velocity.tangential = (i as f64).mul_add(10.0 / (POINTS - 1) as f64, -5.0);
+        // The whole answer is kept (black_box), not only the summed element.
+        sum += black_box(bare(black_box(&p)))[4];
+    }
+    sum
+}
+
 /// The kernels the environment asks for (`RESTITUTION_KERNELS=portable`), as the binary does.
 fn select_kernels() {
     if std::env::var("RESTITUTION_KERNELS").as_deref() == Ok("portable") {
@@ -165,17 +197,7 @@ fn single_core(c: &mut Criterion) {
     group.bench_function("all_outputs", |b| b.iter(|| drive(&all, 0..POINTS)));
     group.bench_function("one_output", |b| b.iter(|| drive(&one, 0..POINTS)));
     group.bench_function("one_output_fixed_scene", |b| b.iter(|| drive(&fixed, 0..POINTS)));
-    group.bench_function("bare_closed_form", |b| {
-        b.iter(|| {
-            let mut p = base();
-            let mut sum = 0.0;
-            for i in 0..POINTS {
-                p.velocity.tangential = (i as f64).mul_add(10.0 / (POINTS - 1) as f64, -5.0);
-                sum += bare(black_box(&p))[4];
-            }
-            sum
-        })
-    });
+    group.bench_function("bare_closed_form", |b| b.iter(bare_sweep));
     group.finish();
 
     // The same sweeps with every decision taken on the f64 value as it is

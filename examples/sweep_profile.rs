@@ -8,10 +8,16 @@
 //! ```
 //!
 //! `RESTITUTION_KERNELS=portable` runs the portable copy of the solver instead
-//! of the x86-64-v3 one (`restitution::kernels`), as the binary does.
+//! of the x86-64-v3 one (`restitution::kernels`), as the binary does (and as
+//! callgrind needs: valgrind 3.19 stops at an AVX instruction of the other).
+//! `sweep_profile one` sweeps the final tangential contact velocity alone
+//! (the bench's `one_output`); `sweep_profile one unfiltered` (or `three
+//! unfiltered`) takes every decision on the f64 value as it is
+//! (`Arithmetic::Unfiltered`: what the filter of `fast` costs).
 
+use restitution::impact::Arithmetic;
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
-use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision};
+use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity};
 
 fn main() {
     if std::env::var("RESTITUTION_KERNELS").as_deref() == Ok("portable") {
@@ -35,12 +41,22 @@ fn main() {
             friction: 0.123,
         },
     );
-    let columns = vec![
-        Output::FinalTangentialContactVelocity,
-        Output::CriticalImpulseRatio,
-        Output::NormalizedEnergyLoss,
-    ];
-    let case = CaseSweep::new(&base, &[Input::TangentialVelocity], columns, Precision::Fast)
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let columns = match args.first().map(String::as_str) {
+        Some("one") => vec![Output::FinalTangentialContactVelocity],
+        None | Some("three") => vec![
+            Output::FinalTangentialContactVelocity,
+            Output::CriticalImpulseRatio,
+            Output::NormalizedEnergyLoss,
+        ],
+        Some(other) => panic!("outputs: one or three, not {other}"),
+    };
+    let arithmetic = match args.get(1).map(String::as_str) {
+        None | Some("fast") => Arithmetic::Fast,
+        Some("unfiltered") => Arithmetic::Unfiltered,
+        Some(other) => panic!("arithmetic: fast or unfiltered, not {other}"),
+    };
+    let case = CaseSweep::in_arithmetic(&base, &[Input::TangentialVelocity], columns, arithmetic)
         .expect("a rigid body reads its velocities");
     let axes = vec![Axis {
         param: Input::TangentialVelocity,

@@ -17,8 +17,12 @@
 //! - (F2) `|x − h| ≤ λ u M`,
 //!
 //! each up to the slack described below. Each operation's rule (at the
-//! operation) derives its `λ` from its operands'. `M` and `λ` are dead where no
-//! decision reads them: an output that is only rounded costs what it cost in
+//! operation) derives its `λ` from its operands' `λ` alone, never from the
+//! values (an exact zero is told by `M = 0`, an uncertain quotient by
+//! `M = ∞`): inputs have `λ = 0`, so along each path of the model every `λ`
+//! is a constant the compiler folds, and with it the choice between a rule's
+//! forms for exact operands and for rounded ones. `M` is dead where no
+//! decision reads it: an output that is only rounded costs what it cost in
 //! plain f64, and the compiler drops the bookkeeping for it.
 //!
 //! Slack. The rules drop second-order terms of relative size `λ u ≤ 2⁻³⁷`
@@ -29,8 +33,8 @@
 //! the bound where a decision is made. As in the compensated stage, every
 //! non-zero `M` is at least 2⁻⁹⁰⁰ ([`floored`]), so a rounding in the subnormal
 //! range (at most 2⁻¹⁰⁷⁵ absolute) is far below `u M`; `M = 0` means the value
-//! is exactly zero with `h = 0`. Overflow leaves an infinity or NaN in `h`,
-//! `M` or `λ`, and then nothing is decided.
+//! is exactly zero with `h = 0`. Overflow leaves an infinity or NaN in `h`
+//! or `M`, and then nothing is decided.
 
 use std::cmp::Ordering;
 
@@ -55,15 +59,15 @@ pub(crate) enum Uncertain {
     Close,
 }
 
-/// `(M, λ)` of `h`, one correct rounding of an exact value where no
-/// underflow lost bits (or the exact zero it then is): `|x| ≤ |h| (1 + 2u)`
-/// and `|x − h| ≤ u |x|`.
+/// `M` of `h`, one correct rounding of an exact value where no underflow
+/// lost bits (or the exact zero it then is): `|x| ≤ |h| (1 + 2u)` and
+/// `|x − h| ≤ u |x|`, so `λ = 1` (any `λ` for a zero, whose `M` is 0).
 #[inline(always)]
-fn once_rounded(h: f64) -> (f64, f64) {
+fn once_rounded(h: f64) -> f64 {
     if h == 0.0 {
-        (0.0, 0.0)
+        0.0
     } else {
-        (floored(h.abs() * ONE_PLUS_2U), 1.0)
+        floored(h.abs() * ONE_PLUS_2U)
     }
 }
 
@@ -99,19 +103,24 @@ impl Filtered {
     /// `|h_x + h_y| ≤ M (1 + λu)`, `M = M_x + M_y`: `λ_s = max(λ_x, λ_y) + 1`.
     ///
     /// Of two exact operands (`λ = 0`) the sum is one correct rounding, exact
-    /// when it is zero or subnormal: `M = |h| (1 + 2u)`, `λ = 1` (`0` for a zero),
-    /// which decides the sign of every such sum (a cancelled difference of two
-    /// inputs is an exact zero).
+    /// when it is zero or subnormal: `M = |h| (1 + 2u)` (`0` for a zero), which
+    /// decides the sign of every such sum (a cancelled difference of two
+    /// inputs is an exact zero); its `λ = 1` is the general rule's.
     #[inline(always)]
     pub(crate) fn add(&self, o: &Self) -> Self {
         let h = self.h + o.h;
-        // Selects rather than branches: the bookkeeping stays straight-line.
-        let (m, lambda) = if self.lambda + o.lambda == 0.0 {
+        // λ is a constant the compiler folds (module documentation), and so
+        // is the choice of the rule for M.
+        let m = if self.lambda + o.lambda == 0.0 {
             once_rounded(h)
         } else {
-            (self.m + o.m, max(self.lambda, o.lambda) + 1.0)
+            self.m + o.m
         };
-        Filtered { h, m, lambda }
+        Filtered {
+            h,
+            m,
+            lambda: max(self.lambda, o.lambda) + 1.0,
+        }
     }
 
     #[inline(always)]
@@ -140,20 +149,22 @@ impl Filtered {
     /// `|x y + z − h| ≤ (λ_x + λ_y) u M_x M_y + λ_z u M_z + u |h|` to first
     /// order, so with `M = M_x M_y + M_z`, `λ = max(λ_x + λ_y, λ_z) + 1`.
     /// Of exact operands with a normal result it is one correct rounding:
-    /// `M = |h| (1 + 2u)`, `λ = 1`, which decides its sign however much cancels.
+    /// `M = |h| (1 + 2u)` (with the rule's `λ = 1`), which decides its sign
+    /// however much cancels.
     #[inline(always)]
     pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
         let h = self.h.mul_add(b.h, c.h);
         let exact = self.lambda + b.lambda + c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE;
-        let (m, lambda) = if exact {
+        let m = if exact {
             once_rounded(h)
         } else {
-            (
-                product_magnitude(self.m, b.m) + c.m,
-                max(self.lambda + b.lambda, c.lambda) + 1.0,
-            )
+            product_magnitude(self.m, b.m) + c.m
         };
-        Filtered { h, m, lambda }
+        Filtered {
+            h,
+            m,
+            lambda: max(self.lambda + b.lambda, c.lambda) + 1.0,
+        }
     }
 
     /// The quotient `x / y`, `q = h_x / h_y` as f64 forms it. With
@@ -162,23 +173,31 @@ impl Filtered {
     /// rounding `u |q|`. With `M_q = (M_x + |q| M_y) / y_low`, which is at least
     /// `|x / y|`, `λ_q = max(λ_x, λ_y) + 2` (one for the rounding, one for the
     /// difference between `|h_x/h_y|` and `|q|` and the roundings of `y_low`).
-    /// An exactly zero dividend gives an exact zero.
+    /// An exactly zero dividend gives an exact zero (`M = 0`). An uncertain
+    /// divisor gives `M = ∞`, which decides nothing; the model divides only
+    /// by values whose exact value is not zero (the exact stages could not
+    /// divide otherwise), so the quotient's exact value is a real number and
+    /// its product with an exact zero the exact zero it is taken for.
     #[inline(always)]
     pub(crate) fn div(&self, o: &Self) -> Self {
         let q = self.h / o.h;
-        let error_y = o.lambda * U * o.m * SLACK;
+        let error_y = (o.lambda * (U * SLACK)) * o.m;
         let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
         let certified = y_low >= 0.5 * o.h.abs() && y_low > 0.0;
         let m = floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low);
         // Selects rather than branches: the bookkeeping stays straight-line.
-        let (m, lambda) = if self.m == 0.0 {
-            (0.0, 0.0)
+        let m = if self.m == 0.0 {
+            0.0
         } else if certified {
-            (m, max(self.lambda, o.lambda) + 2.0)
+            m
         } else {
-            (f64::INFINITY, f64::INFINITY)
+            f64::INFINITY
         };
-        Filtered { h: q, m, lambda }
+        Filtered {
+            h: q,
+            m,
+            lambda: max(self.lambda, o.lambda) + 2.0,
+        }
     }
 
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
@@ -187,15 +206,14 @@ impl Filtered {
     pub(crate) fn quotient_of(num: f64, rounded: f64) -> Self {
         // A subnormal or underflowed quotient is off by at most 2⁻¹⁰⁷⁵, far
         // below u M for the floored M.
-        let exact_zero = num == 0.0;
         Filtered {
             h: rounded,
-            m: if exact_zero {
+            m: if num == 0.0 {
                 0.0
             } else {
                 floored(rounded.abs() * ONE_PLUS_2U)
             },
-            lambda: if exact_zero { 0.0 } else { 1.0 },
+            lambda: 1.0,
         }
     }
 
@@ -210,10 +228,10 @@ impl Filtered {
             return Ok(Filtered {
                 h: s,
                 m: 0.0,
-                lambda: 0.0,
+                lambda: self.lambda + 2.0,
             });
         }
-        let low = (self.h - self.lambda * U * self.m * SLACK) * (1.0 - 4.0 * U);
+        let low = (self.h - (self.lambda * (U * SLACK)) * self.m) * (1.0 - 4.0 * U);
         if !(self.h.is_finite() && self.m.is_finite() && self.lambda <= LAMBDA_MAX) {
             return Err(Uncertain::Range);
         }
@@ -231,7 +249,7 @@ impl Filtered {
     /// The exact value's sign, unless the bound cannot decide it.
     #[inline(always)]
     pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
-        let bound = self.lambda * U * self.m * SLACK;
+        let bound = (self.lambda * (U * SLACK)) * self.m;
         if !(self.h.is_finite() && bound.is_finite() && self.lambda <= LAMBDA_MAX) {
             return Err(Uncertain::Range);
         }

@@ -312,6 +312,14 @@ fn law_input(law: &Law) -> Input {
 }
 
 /// A validated rigid-body impact, ready to run in any field.
+/// What a sweep's points share, validated once: a rigid body's scene when no
+/// axis changes it, and its law when no axis changes that.
+#[derive(Debug, Clone)]
+pub struct Fixed {
+    scene: Option<Result<PlanarScene>>,
+    law: Option<Result<Law>>,
+}
+
 struct Rigid<'a> {
     scene: &'a PlanarScene,
     law: Law,
@@ -339,8 +347,7 @@ impl Model<PlanarOutcome> for Point {
 
 impl Case for PlanarImpact {
     type Outcome = PlanarOutcome;
-    /// The rigid body's scene, when no axis changes it.
-    type Fixed = Option<Result<PlanarScene>>;
+    type Fixed = Fixed;
 
     const INPUTS: &'static [Input] = &[
         Input::Mass,
@@ -508,7 +515,15 @@ impl Case for PlanarImpact {
             Input::AngularVelocity,
         ];
         let rigid = matches!(self.body, PlanarBody::Rigid { .. });
-        (rigid && !swept.iter().any(|i| SCENE.contains(i))).then(|| self.scene())
+        // Every other input of the case is the law's.
+        let (scene_swept, law_swept) = (
+            swept.iter().any(|i| SCENE.contains(i)),
+            swept.iter().any(|i| !SCENE.contains(i)),
+        );
+        Fixed {
+            scene: (rigid && !scene_swept).then(|| self.scene()),
+            law: (rigid && !law_swept).then(|| self.law.validate()),
+        }
     }
 
     #[inline(always)]
@@ -529,7 +544,7 @@ impl Case for PlanarImpact {
             },
             PlanarBody::Rigid { .. } => {
                 let built;
-                let scene = match fixed {
+                let scene = match &fixed.scene {
                     Some(Ok(scene)) => scene,
                     Some(Err(e)) => return refused(e.clone()),
                     None => match self.scene() {
@@ -540,7 +555,11 @@ impl Case for PlanarImpact {
                         Err(e) => return refused(e),
                     },
                 };
-                match self.law.validate() {
+                let law = match &fixed.law {
+                    Some(law) => law.clone(),
+                    None => self.law.validate(),
+                };
+                match law {
                     Ok(law) => evaluate(arithmetic, in_range, Rigid { scene, law, outputs }, out),
                     Err(e) => refused(e),
                 }

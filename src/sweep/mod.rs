@@ -494,9 +494,10 @@ mod tests {
         let columns = vec![Output::FinalTangentialContactVelocity, Output::EnergyLoss];
         let fixed =
             CaseSweep::new(&maw(0.123), &[Input::Friction], columns.clone(), Precision::Fast).unwrap();
+        // Sweeping a velocity too: the scene and the law built per point.
         let per_point = CaseSweep::new(
             &maw(0.123),
-            &[Input::TangentialVelocity],
+            &[Input::TangentialVelocity, Input::Friction],
             columns,
             Precision::Fast,
         )
@@ -509,6 +510,42 @@ mod tests {
                 fixed.solve(&p).unwrap(),
                 solve(&p, fixed.outputs(), Precision::Fast).unwrap()
             );
+        }
+    }
+
+    #[test]
+    fn a_fixed_law_gives_the_same_answers_and_refusals_as_one_validated_per_point() {
+        let columns = vec![Output::FinalTangentialContactVelocity, Output::Regime];
+        // The law is valid in one base and out of range (e_t > 1) in the other.
+        for et in [0.34, 1.5] {
+            let mut base = maw(0.123);
+            base.law = Law::TangentialRestitution {
+                restitution: 0.93,
+                friction: 0.123,
+                tangential_restitution: et,
+            };
+            let fixed_law = CaseSweep::new(
+                &base,
+                &[Input::TangentialVelocity],
+                columns.clone(),
+                Precision::Fast,
+            )
+            .unwrap();
+            let per_point = CaseSweep::new(
+                &base,
+                &[Input::TangentialVelocity, Input::TangentialRestitution],
+                columns.clone(),
+                Precision::Fast,
+            )
+            .unwrap();
+            for vt in [-3.0, 0.0, 0.01, 2.0] {
+                let mut p = base;
+                p.velocity.tangential = vt;
+                let answer = fixed_law.solve(&p);
+                assert_eq!(answer, per_point.solve(&p));
+                assert_eq!(answer, solve(&p, fixed_law.outputs(), Precision::Fast));
+                assert_eq!(answer.is_ok(), et <= 1.0, "{answer:?}");
+            }
         }
     }
 
