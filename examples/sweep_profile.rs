@@ -11,9 +11,11 @@
 //! of the x86-64-v3 one (`restitution::kernels`), as the binary does (and as
 //! callgrind needs: valgrind 3.19 stops at an AVX instruction of the other).
 //! `sweep_profile one` sweeps the final tangential contact velocity alone
-//! (the bench's `one_output`); `sweep_profile one unfiltered` (or `three
-//! unfiltered`) takes every decision on the f64 value as it is
-//! (`Arithmetic::Unfiltered`: what the filter of `fast` costs).
+//! (the bench's `one_output`), `sweep_profile fixed` the same over the
+//! friction coefficient in `[0, 1]` (the scene built once: the bench's
+//! `one_output_fixed_scene`); a second argument `unfiltered` takes every
+//! decision on the f64 value as it is (`Arithmetic::Unfiltered`: what the
+//! filter of `fast` costs).
 
 use restitution::impact::Arithmetic;
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
@@ -43,26 +45,29 @@ fn main() {
     );
     let args: Vec<String> = std::env::args().skip(1).collect();
     let columns = match args.first().map(String::as_str) {
-        Some("one") => vec![Output::FinalTangentialContactVelocity],
+        Some("one" | "fixed") => vec![Output::FinalTangentialContactVelocity],
         None | Some("three") => vec![
             Output::FinalTangentialContactVelocity,
             Output::CriticalImpulseRatio,
             Output::NormalizedEnergyLoss,
         ],
-        Some(other) => panic!("outputs: one or three, not {other}"),
+        Some(other) => panic!("outputs: one, fixed or three, not {other}"),
     };
     let arithmetic = match args.get(1).map(String::as_str) {
         None | Some("fast") => Arithmetic::Fast,
         Some("unfiltered") => Arithmetic::Unfiltered,
         Some(other) => panic!("arithmetic: fast or unfiltered, not {other}"),
     };
-    let case = CaseSweep::in_arithmetic(&base, &[Input::TangentialVelocity], columns, arithmetic)
-        .expect("a rigid body reads its velocities");
+    let (param, start, stop) = match args.first().map(String::as_str) {
+        Some("fixed") => (Input::Friction, 0.0, 1.0),
+        _ => (Input::TangentialVelocity, -5.0, 5.0),
+    };
+    let case = CaseSweep::in_arithmetic(&base, &[param], columns, arithmetic).expect("an input of the law");
     let axes = vec![Axis {
-        param: Input::TangentialVelocity,
+        param,
         values: AxisValues::Linspace {
-            start: -5.0,
-            stop: 5.0,
+            start,
+            stop,
             count: 1_000_000,
         },
     }];
