@@ -1,5 +1,6 @@
 //! Time per solve of each method on one typical non-central impact (Coulomb
-//! friction, every output): the fast closed forms, the nalgebra 3×3 LU solve,
+//! friction, every output): the fast closed forms (and the same model with its
+//! decisions unfiltered, taken on the f64 values), the nalgebra 3×3 LU solve,
 //! the adaptive exact mode and the pure rational evaluation; then the general
 //! planar contact (world axes) against a barrier and between two bodies;
 //! the contact in space (fast, exact, and its last exact stage alone).
@@ -46,6 +47,11 @@ fn methods(c: &mut Criterion) {
     let mut group = c.benchmark_group("coulomb_all_outputs");
     group.bench_function("fast", |b| {
         b.iter(|| solve(black_box(&p), Outputs::ALL, Precision::Fast))
+    });
+    // Every decision on the f64 value as it is: the model without the
+    // filter that makes `fast`'s decisions exact (what the filter costs).
+    group.bench_function("unfiltered", |b| {
+        b.iter(|| solve_in(black_box(&p), Outputs::ALL, Arithmetic::Unfiltered))
     });
     let scene = p.scene().unwrap();
     let answer = solve(&p, Outputs::ALL, Precision::Exact).unwrap();
