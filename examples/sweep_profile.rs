@@ -44,23 +44,27 @@ fn main() {
         },
     );
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let columns = match args.first().map(String::as_str) {
-        Some("one" | "fixed") => vec![Output::FinalTangentialContactVelocity],
-        None | Some("three") => vec![
-            Output::FinalTangentialContactVelocity,
-            Output::CriticalImpulseRatio,
-            Output::NormalizedEnergyLoss,
-        ],
-        Some(other) => panic!("outputs: one, fixed or three, not {other}"),
+    let velocity = (Input::TangentialVelocity, -5.0, 5.0);
+    let (columns, (param, start, stop)) = match args.first().map(String::as_str) {
+        Some("one") => (vec![Output::FinalTangentialContactVelocity], velocity),
+        Some("fixed") => (
+            vec![Output::FinalTangentialContactVelocity],
+            (Input::Friction, 0.0, 1.0),
+        ),
+        None | Some("three") => (
+            vec![
+                Output::FinalTangentialContactVelocity,
+                Output::CriticalImpulseRatio,
+                Output::NormalizedEnergyLoss,
+            ],
+            velocity,
+        ),
+        Some(other) => panic!("workload: one, fixed or three, not {other}"),
     };
     let arithmetic = match args.get(1).map(String::as_str) {
         None | Some("fast") => Arithmetic::Fast,
         Some("unfiltered") => Arithmetic::Unfiltered,
         Some(other) => panic!("arithmetic: fast or unfiltered, not {other}"),
-    };
-    let (param, start, stop) = match args.first().map(String::as_str) {
-        Some("fixed") => (Input::Friction, 0.0, 1.0),
-        _ => (Input::TangentialVelocity, -5.0, 5.0),
     };
     let case = CaseSweep::in_arithmetic(&base, &[param], columns, arithmetic).expect("an input of the law");
     let axes = vec![Axis {

@@ -20,8 +20,9 @@
 //! operation) derives its `λ` from its operands' `λ` alone, never from the
 //! values (an exact zero is told by `M = 0`, an uncertain quotient by
 //! `M = ∞`): inputs have `λ = 0`, so along each path of the model every `λ`
-//! is a constant the compiler folds, and with it the choice between a rule's
-//! forms for exact operands and for rounded ones. `M` is dead where no
+//! is a constant, which the compiler can fold with the choice between a
+//! rule's forms for exact operands and for rounded ones (where two paths
+//! that meet carry different `λ`, it stays a run-time value). `M` is dead where no
 //! decision reads it: an output that is only rounded costs what it cost in
 //! plain f64, and the compiler drops the bookkeeping for it.
 //!
@@ -109,8 +110,8 @@ impl Filtered {
     #[inline(always)]
     pub(crate) fn add(&self, o: &Self) -> Self {
         let h = self.h + o.h;
-        // λ is a constant the compiler folds (module documentation), and so
-        // is the choice of the rule for M.
+        // λ depends on the path alone (module documentation), and so does
+        // the choice of the rule for M.
         let m = if self.lambda + o.lambda == 0.0 {
             once_rounded(h)
         } else {

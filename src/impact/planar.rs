@@ -311,7 +311,6 @@ fn law_input(law: &Law) -> Input {
     }
 }
 
-/// A validated rigid-body impact, ready to run in any field.
 /// What a sweep's points share, validated once: a rigid body's scene when no
 /// axis changes it, and its law when no axis changes that.
 #[derive(Debug, Clone)]
@@ -320,6 +319,7 @@ pub struct Fixed {
     law: Option<Result<Law>>,
 }
 
+/// A validated rigid-body impact, ready to run in any field.
 struct Rigid<'a> {
     scene: &'a PlanarScene,
     law: Law,
