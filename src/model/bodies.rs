@@ -277,8 +277,8 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     #[inline(always)]
     fn ratio_turn(&self, _lever: &(), _per: &N) {}
     #[inline(always)]
-    fn inv_det(&self) -> &N {
-        &self.inv_det
+    fn inv_det(&self) -> N {
+        self.inv_det.clone()
     }
     #[inline(always)]
     fn target_normal(&self, _qn: &N, sdn: &N, inv_det: &N) -> N {

@@ -52,7 +52,7 @@ pub(crate) trait ContactSpace<N: Field> {
     /// The turn of a ratio answer.
     fn ratio_turn(&self, lever: &Self::Turn, per: &N) -> Self::Turn;
     /// `1 / det W̃` in the scene's unit of `Δ`.
-    fn inv_det(&self) -> &N;
+    fn inv_det(&self) -> N;
     /// `Δn` of a target answer: `(C q_n + B q_t) / det`, given as `sdn`.
     fn target_normal(&self, qn: &N, sdn: &N, inv_det: &N) -> N;
     /// The turn of a target answer that changes `u_n` by `q_n` and `u_t` by `−q_t`.
@@ -275,7 +275,7 @@ fn target_answer<N: Field, S: ContactSpace<N>>(
     let qt = N::of(1.0).add(&N::of(et)).mul(sc.ut());
     let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
     let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
-    let inv = sc.inv_det();
+    let inv = &sc.inv_det();
     let answer = Answer {
         un: e.mul(sc.un()).neg(),
         ut: N::of(et).mul(sc.ut()).neg(),

@@ -14,8 +14,6 @@
 //! Impulses are carried per unit mass (`Δn = P_n / m`, `Δt = P_t / m`) and
 //! scaled by `k²` so that no `1/k²` can overflow.
 
-use std::cell::OnceCell;
-
 use super::contact::{Assembly, ContactSpace, critical_output, under_law};
 use super::{Exact, half, out};
 use crate::arith::Field;
@@ -48,8 +46,6 @@ struct Scene<'a, N> {
     wnt: N,
     /// `S = k² + d_c² + d_d²`.
     total: N,
-    /// `1 / S`, formed when first needed.
-    inv_total: OnceCell<N>,
 }
 
 impl<'a, N: Field> Scene<'a, N> {
@@ -68,13 +64,13 @@ impl<'a, N: Field> Scene<'a, N> {
         let k2 = N::quotient_of(fast.body.inertia(), fast.body.mass(), fast.k2);
         let dd2 = dd.mul(&dd);
         let k2_dc2 = dc.mul_add(&dc, &k2);
+        let total = k2_dc2.add(&dd2);
         Scene {
             fast,
             s: vcn.neg(),
             k2_dd2: k2.add(&dd2),
             wnt: dc.mul(&dd).neg(),
-            total: k2_dc2.add(&dd2),
-            inv_total: OnceCell::new(),
+            total,
             k2_dc2,
             k2,
             m,
@@ -95,10 +91,13 @@ impl<'a, N: Field> Scene<'a, N> {
         self.fast.contact.tangential_offset == 0.0
     }
 
-    /// `1 / S`, formed once.
+    /// `1 / S`, formed where it is read (the target law, the energy), not
+    /// kept: a lazy cell's out-of-line initialiser took the scene's address,
+    /// so every value of the scene was stored and loaded again and no `λ` of
+    /// `Filtered` was folded. Read twice, the f64 division is formed once.
     #[inline(always)]
-    fn inv_total(&self) -> &N {
-        self.inv_total.get_or_init(|| N::of(1.0).div(&self.total))
+    fn inv_total(&self) -> N {
+        N::of(1.0).div(&self.total)
     }
 }
 
@@ -162,7 +161,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
 
     /// `1 / S`, `S = k² + d_c² + d_d²` (`det W̃ = k² S` in units of `m k²`).
     #[inline(always)]
-    fn inv_det(&self) -> &N {
+    fn inv_det(&self) -> N {
         self.inv_total()
     }
 
@@ -297,8 +296,8 @@ impl<N: Field> Scene<'_, N> {
         let max_per_mass = half::<N>().mul(
             &self
                 .k2
-                .mul(inv_total)
-                .mul_add(&speed2, &lever.mul(&lever.mul(inv_total))),
+                .mul(&inv_total)
+                .mul_add(&speed2, &lever.mul(&lever.mul(&inv_total))),
         );
         // The clamps only act on f64 roundings: the exact values satisfy them.
         Ok(PlanarEnergy {
