@@ -251,15 +251,21 @@ impl Filtered {
     #[inline(always)]
     pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
         let bound = (self.lambda * (U * SLACK)) * self.m;
-        if !(self.h.is_finite() && bound.is_finite() && self.lambda <= LAMBDA_MAX) {
+        // (λ is a sum and maximum of small constants, never a NaN.)
+        if self.lambda > LAMBDA_MAX {
             return Err(Uncertain::Range);
         }
-        if self.h.abs() > bound {
+        let magnitude = self.h.abs();
+        // A finite |h| above the bound makes the bound finite too (a NaN
+        // compares false): one test less on the common path.
+        if magnitude > bound && magnitude < f64::INFINITY {
             Ok(if self.h > 0.0 {
                 Ordering::Greater
             } else {
                 Ordering::Less
             })
+        } else if !(self.h.is_finite() && bound.is_finite()) {
+            Err(Uncertain::Range)
         } else if bound == 0.0 {
             // λ = 0 (an input) or M = 0 (an exact zero): h is the exact value.
             Ok(if self.h > 0.0 {
