@@ -195,21 +195,23 @@ impl Field for Filtered {
         Self::sign(self)
     }
     /// The f64 value itself (`fast` outputs are not rounded again), with a
-    /// zero written `+0.0`.
+    /// zero written `+0.0`. The finiteness is tested on the returned value,
+    /// so that the caller's test of the same value ([`crate::model::out`])
+    /// is known true and folded away.
     #[inline(always)]
     fn round(&self) -> Result<f64, Uncertain> {
-        let h = self.value();
-        if h.is_finite() {
-            Ok(h + 0.0)
+        let v = self.value() + 0.0;
+        if v.is_finite() {
+            Ok(v)
         } else {
             Err(Uncertain::Range)
         }
     }
     #[inline(always)]
     fn round_times_sqrt(&self, y: &Self) -> Result<f64, Uncertain> {
-        let v = self.value() * y.value().sqrt();
+        let v = self.value() * y.value().sqrt() + 0.0;
         if v.is_finite() {
-            Ok(v + 0.0)
+            Ok(v)
         } else {
             Err(Uncertain::Range)
         }
@@ -277,11 +279,9 @@ impl Field for f64 {
     /// The value itself, with a zero written `+0.0`.
     #[inline(always)]
     fn round(&self) -> Result<f64, OutOfRange> {
-        if self.is_finite() {
-            Ok(self + 0.0)
-        } else {
-            Err(OutOfRange)
-        }
+        // Tested on the returned value, as `Filtered`'s.
+        let v = self + 0.0;
+        if v.is_finite() { Ok(v) } else { Err(OutOfRange) }
     }
     #[inline(always)]
     fn round_times_sqrt(&self, y: &Self) -> Result<f64, OutOfRange> {
