@@ -215,8 +215,9 @@ impl<C: SweepCase> Sweep<C> {
     /// A sliding window, not batches: as soon as the oldest chunk is consumed
     /// the next one is queued, so no worker waits for the slowest chunk of a
     /// batch (on this 2-core VM, batches with a barrier gave 1.2× one core).
-    /// Call it from outside the rayon pool: the calling thread waits for each
-    /// chunk in turn.
+    /// The calling thread waits for each chunk in turn; called from a thread
+    /// of the rayon pool itself (where that wait could hold the pool's only
+    /// thread), it evaluates the chunks in order on that thread instead.
     pub fn run_parallel<T: Send>(
         &self,
         chunk: u64,
@@ -224,6 +225,17 @@ impl<C: SweepCase> Sweep<C> {
         mut consume: impl FnMut(T) -> bool,
     ) -> bool {
         let chunk = chunk.max(1);
+        if rayon::current_thread_index().is_some() {
+            let mut start = self.range.start;
+            while start < self.range.end {
+                let range = start..start.saturating_add(chunk).min(self.range.end);
+                start = range.end;
+                if !consume(produce(range)) {
+                    return false;
+                }
+            }
+            return true;
+        }
         let window = 2 * rayon::current_num_threads().max(1);
         let end = self.range.end;
         let stopped = AtomicBool::new(false);
@@ -455,6 +467,25 @@ mod tests {
                 limit: 8
             }
         );
+    }
+
+    #[test]
+    fn parallel_chunks_arrive_in_order_from_inside_the_pool_too() {
+        let s = sweep(Combine::Product);
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let seen = pool.install(|| {
+            let mut seen = Vec::new();
+            assert!(s.run_parallel(
+                2,
+                |r| collect(&s, r),
+                |rows| {
+                    seen.extend(rows);
+                    true
+                }
+            ));
+            seen
+        });
+        assert_eq!(seen, collect(&s, 0..9));
     }
 
     #[test]
