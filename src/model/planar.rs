@@ -94,7 +94,8 @@ impl<'a, N: Field> Scene<'a, N> {
     /// `1 / S`, formed where it is read (the target law, the energy), not
     /// kept: a lazy cell's out-of-line initialiser took the scene's address,
     /// so every value of the scene was stored and loaded again and no `λ` of
-    /// `Filtered` was folded. Read twice, the f64 division is formed once.
+    /// `Filtered` was folded. A law and the energy that both read it each
+    /// form it (the exact fields divide twice then).
     #[inline(always)]
     fn inv_total(&self) -> N {
         N::of(1.0).div(&self.total)

@@ -407,6 +407,20 @@ mod tests {
         rows
     }
 
+    /// The sweep's rows through [`Sweep::run_parallel`] in chunks of `chunk`.
+    fn collect_parallel(s: &Sweep<Sum>, chunk: u64) -> Vec<(u64, Vec<f64>, Option<f64>)> {
+        let mut rows = Vec::new();
+        assert!(s.run_parallel(
+            chunk,
+            |r| collect(s, r),
+            |part| {
+                rows.extend(part);
+                true
+            }
+        ));
+        rows
+    }
+
     #[test]
     fn product_varies_the_first_axis_slowest_and_keeps_errors_per_point() {
         let s = sweep(Combine::Product);
@@ -429,15 +443,7 @@ mod tests {
             // The limit applies to the range: a grid of 9 points in slices of at most 5.
             let s = Sweep::slice(Sum, [0.0; 2], axes.clone(), Combine::Product, Some(r.clone()), 5).unwrap();
             assert_eq!((s.points(), s.total_points()), (r.end - r.start, 9));
-            let mut rows = Vec::new();
-            s.run_parallel(
-                2,
-                |r| collect(&s, r),
-                |chunk| {
-                    rows.extend(chunk);
-                    true
-                },
-            );
+            let rows = collect_parallel(&s, 2);
             assert_eq!(rows, collect(&s, 0..9));
             tiled.extend(rows);
         }
@@ -473,19 +479,7 @@ mod tests {
     fn parallel_chunks_arrive_in_order_from_inside_the_pool_too() {
         let s = sweep(Combine::Product);
         let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        let seen = pool.install(|| {
-            let mut seen = Vec::new();
-            assert!(s.run_parallel(
-                2,
-                |r| collect(&s, r),
-                |rows| {
-                    seen.extend(rows);
-                    true
-                }
-            ));
-            seen
-        });
-        assert_eq!(seen, collect(&s, 0..9));
+        assert_eq!(pool.install(|| collect_parallel(&s, 2)), collect(&s, 0..9));
     }
 
     #[test]
@@ -499,16 +493,7 @@ mod tests {
     #[test]
     fn parallel_chunks_arrive_in_order_and_stop_on_request() {
         let s = sweep(Combine::Product);
-        let mut seen = Vec::new();
-        assert!(s.run_parallel(
-            2,
-            |r| collect(&s, r),
-            |rows| {
-                seen.extend(rows);
-                true
-            }
-        ));
-        assert_eq!(seen, collect(&s, 0..9));
+        assert_eq!(collect_parallel(&s, 2), collect(&s, 0..9));
         let mut calls = 0;
         assert!(!s.run_parallel(
             1,
