@@ -52,8 +52,6 @@ pub(super) const U: f64 = f64::EPSILON / 2.0;
 const U2: f64 = U * U;
 /// Every non-zero `M` is at least this (2⁻⁹⁰⁰): see the module documentation.
 pub(super) const FLOOR: f64 = f64::from_bits((1023 - 900) << 52);
-/// 2⁹⁰⁰, the reciprocal of [`FLOOR`].
-const ZERO_OR_LARGE: f64 = f64::from_bits((1023 + 900) << 52);
 /// The least `|q|` of a certified quotient that is not exactly zero (2⁻⁹⁰⁰).
 const QUOTIENT_MIN: f64 = FLOOR;
 /// The most `λ` may reach where a decision is made (2¹⁶).
@@ -73,11 +71,11 @@ pub(super) fn floored(m: f64) -> f64 {
 
 /// `M_x M_y` raised to [`FLOOR`], except that it is zero when a factor is (an
 /// exact zero times anything finite is an exact zero), without a branch:
-/// `min(M_x, M_y) 2⁹⁰⁰` is 0 for a zero factor and at least 1 otherwise.
+/// every `M` is 0 or at least [`FLOOR`] (or ∞, or a NaN: see [`max`]), so
+/// `min(FLOOR, M_x, M_y)` is 0 for a zero factor and [`FLOOR`] otherwise.
 #[inline(always)]
 pub(super) fn product_magnitude(mx: f64, my: f64) -> f64 {
-    let floor = min(FLOOR, min(mx, my) * ZERO_OR_LARGE);
-    max(mx * my, floor)
+    max(mx * my, min(FLOOR, min(mx, my)))
 }
 
 /// The larger of `a` and `b`, `b` if either is a NaN (one instruction, unlike
@@ -339,6 +337,47 @@ mod tests {
 
     fn of(x: f64) -> BigRational {
         BigRational::from_float(x).unwrap()
+    }
+
+    /// On every `M` the rules can form (0, at least [`FLOOR`], ∞, a NaN),
+    /// `product_magnitude` is the floored product it stands for: zero when a
+    /// factor is zero, at least [`FLOOR`] and at least `M_x M_y` otherwise,
+    /// and exactly `M_x M_y` where that product is itself at least [`FLOOR`].
+    #[test]
+    fn product_magnitude_is_the_floored_product_or_an_exact_zero() {
+        let mut ms = vec![
+            0.0,
+            FLOOR,
+            f64::INFINITY,
+            f64::NAN,
+            1.0,
+            2f64.powi(-450),
+            2f64.powi(600),
+        ];
+        let mut rng = Rng::new(0x9a9);
+        for _ in 0..200 {
+            ms.push(FLOOR * 2f64.powf(rng.unit() * 1800.0) * (1.0 + rng.unit()));
+        }
+        for &mx in &ms {
+            for &my in &ms {
+                let p = product_magnitude(mx, my);
+                // The form it replaces (which scaled min(M_x, M_y) by 2⁹⁰⁰),
+                // bit for bit, NaNs included.
+                let before = max(mx * my, min(FLOOR, min(mx, my) * 2f64.powi(900)));
+                assert_eq!(p.to_bits(), before.to_bits(), "{mx:e} {my:e}");
+                let exact = mx * my;
+                if mx.is_nan() || my.is_nan() {
+                    // An overflowed M: nothing is certified from it.
+                    continue;
+                } else if mx == 0.0 || my == 0.0 {
+                    assert_eq!(p.to_bits(), 0f64.to_bits(), "{mx:e} {my:e}");
+                } else if exact >= FLOOR {
+                    assert_eq!(p.to_bits(), exact.to_bits(), "{mx:e} {my:e}");
+                } else {
+                    assert_eq!(p, FLOOR, "{mx:e} {my:e}");
+                }
+            }
+        }
     }
 
     /// A quotient too small to certify decides nothing, alone or in later
