@@ -17,43 +17,8 @@ set -euo pipefail
 rounds=${ROUNDS:-3}
 seconds=${SECONDS_PER_CELL:-4}
 connections=${CONNECTIONS:-16}
-log=${LOG:-/dev/null}
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-cd "$root"
-
-if [ -n "${LOAD:-}" ] && [ -n "${SERVICE:-}" ]; then
-    load=$LOAD service=$SERVICE
-else
-    built=$(cargo build --release -j1 --bin restitution --bench load --message-format=json-render-diagnostics)
-    executable() { jq -r --arg name "$1" 'select(.reason == "compiler-artifact" and .target.name == $name) | .executable' <<<"$built" | tail -1; }
-    load=$(executable load)
-    service=${SERVICE:-$(executable restitution)}
-fi
-[ -x "$load" ] && [ -x "$service" ] || { echo "no load harness or service binary" >&2; exit 1; }
-
-pids=()
-cleanup() { for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; wait 2>/dev/null || true; }
-trap cleanup EXIT
-
-free_port() { python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])'; }
-wait_port() {
-    for _ in $(seq 200); do
-        (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null && return 0
-        sleep 0.05
-    done
-    echo "server on port $1 did not start" >&2; exit 1
-}
-
-names=(); ports=()
-start() { # name, program and arguments (PORT stands for the port); env assignments in front
-    local name=$1; shift
-    local port; port=$(free_port)
-    "${@//PORT/$port}" >>"$log" 2>&1 &
-    pids+=($!)
-    wait_port "$port"
-    names+=("$name"); ports+=("$port")
-}
+# shellcheck source=benches/scripts/servers.sh
+. "$(dirname "$0")/servers.sh"
 
 start bare "$load" --serve-bare PORT
 start service env -u RESTITUTION_LOG "$service" --bind 127.0.0.1:PORT
@@ -65,12 +30,6 @@ fi
 
 # CPU time (user + system, in clock ticks) a server has used so far.
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
-
-run() { # port, seconds -> "requests/s requests" (wrk's count)
-    wrk -t1 -c"$connections" -d"$2"s -s "$here/oblique.lua" "http://127.0.0.1:$1/v1/impacts/oblique" |
-        awk '/requests in/ {n = $1} /^Requests\/sec:/ {r = $2} /Non-2xx/ {bad = 1}
-             END {if (bad) {print "non-2xx answers" > "/dev/stderr"; exit 1} printf "%.0f %d\n", r, n}'
-}
 
 for port in "${ports[@]}"; do run "$port" 1 >/dev/null; done
 hz=$(getconf CLK_TCK)
