@@ -1,7 +1,52 @@
-//! What an impact answers: the outcome types of the planar and torsional
-//! cases, and which optional outputs a caller asks for.
+//! What an impact answers: the outcome type of each case, the one
+//! declaration of which outputs each answers and how each is read off it
+//! ([`Answers`]), and which optional outputs a caller asks for.
 
+use crate::quantity::{Output, Value};
 use crate::scene::{ContactVelocity, PlanarVelocity};
+
+/// An outcome type's outputs, declared once by [`answers!`]: the outputs it
+/// answers in response order, and how each is read off an outcome. Every
+/// list of a case's outputs (its response, its sweep columns, the model's
+/// names for the outputs it writes) is taken from here.
+pub trait Answers: Sized {
+    /// Every output, in response order.
+    const OUTPUTS: &'static [Output];
+    /// How to read `output` off an outcome; `None` for an output this
+    /// outcome does not answer (another case's). A number is `NaN` when the
+    /// impact did not compute it (an optional output not asked for, body B
+    /// of a barrier impact).
+    fn reader(output: Output) -> Option<fn(&Self) -> Value>;
+    /// One output's value, `None` for an output of another case.
+    #[inline]
+    fn value(&self, output: Output) -> Option<Value> {
+        Self::reader(output).map(|read| read(self))
+    }
+}
+
+/// Implements [`Answers`] for an outcome type from one list of
+/// `Output => |outcome| value` entries, in response order.
+macro_rules! answers {
+    ($outcome:ty { $($output:ident => |$o:ident| $read:expr,)* }) => {
+        impl Answers for $outcome {
+            const OUTPUTS: &'static [Output] = &[$(Output::$output,)*];
+
+            #[inline]
+            fn reader(output: Output) -> Option<fn(&Self) -> Value> {
+                match output {
+                    $(Output::$output => Some(|$o: &Self| Value::from($read)),)*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+/// An optional number read off an outcome: `NaN` when it was not computed.
+#[inline]
+fn or_nan<T>(part: Option<T>, read: impl FnOnce(T) -> f64) -> f64 {
+    part.map_or(f64::NAN, read)
+}
 
 /// Which tangential law produced a planar answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -308,4 +353,216 @@ pub struct SpatialOutcome {
     pub torsional_regime: Option<TorsionalRegime>,
     /// Energies of the pair (with the couple's work), when asked for.
     pub energy: Option<PlanarEnergy>,
+}
+
+answers!(PlanarOutcome {
+    FinalNormalVelocity => |o| o.final_velocity.normal,
+    FinalTangentialVelocity => |o| o.final_velocity.tangential,
+    FinalAngularVelocity => |o| o.final_velocity.angular,
+    InitialNormalContactVelocity => |o| o.contact_velocity.initial.normal,
+    InitialTangentialContactVelocity => |o| o.contact_velocity.initial.tangential,
+    FinalNormalContactVelocity => |o| o.contact_velocity.r#final.normal,
+    FinalTangentialContactVelocity => |o| o.contact_velocity.r#final.tangential,
+    NormalImpulse => |o| o.impulse.normal,
+    TangentialImpulse => |o| o.impulse.tangential,
+    ImpulseRatio => |o| o.impulse_ratio,
+    CriticalImpulseRatio => |o| o.critical_impulse_ratio.unwrap_or(f64::NAN),
+    Restitution => |o| o.restitution,
+    KineticRestitution => |o| o.kinetic_restitution,
+    Regime => |o| o.regime.as_str(),
+    InitialEnergy => |o| or_nan(o.energy, |e| e.initial),
+    FinalEnergy => |o| or_nan(o.energy, |e| e.r#final),
+    EnergyLoss => |o| or_nan(o.energy, |e| e.loss),
+    MaxEnergyLoss => |o| or_nan(o.energy, |e| e.max_loss),
+    NormalizedEnergyLoss => |o| or_nan(o.energy, |e| e.normalized_loss),
+});
+
+answers!(TorsionalOutcome {
+    FinalNormalVelocity => |o| o.final_normal_velocity,
+    FinalSpin => |o| o.final_spin,
+    NormalImpulse => |o| o.normal_impulse,
+    TorsionalImpulse => |o| o.torsional_impulse,
+    Regime => |o| o.regime.as_str(),
+    SwitchSpin => |o| o.switch_spin,
+    InitialEnergy => |o| or_nan(o.energy, |e| e.initial),
+    FinalEnergy => |o| or_nan(o.energy, |e| e.r#final),
+    EnergyLoss => |o| or_nan(o.energy, |e| e.loss),
+});
+
+impl BodiesOutcome {
+    /// A number of body `k`'s outcome, `NaN` where there is no body `k`.
+    #[inline]
+    fn body(&self, k: usize, read: impl FnOnce(&BodyOutcome) -> f64) -> f64 {
+        or_nan(self.bodies.get(k).filter(|_| k < self.body_count), read)
+    }
+}
+
+answers!(BodiesOutcome {
+    FinalVelocityAX => |o| o.body(0, |b| b.velocity[0]),
+    FinalVelocityAY => |o| o.body(0, |b| b.velocity[1]),
+    FinalAngularVelocityA => |o| o.body(0, |b| b.angular_velocity),
+    VelocityChangeAX => |o| o.body(0, |b| b.velocity_change[0]),
+    VelocityChangeAY => |o| o.body(0, |b| b.velocity_change[1]),
+    DeltaVA => |o| o.body(0, |b| b.delta_v),
+    AngularVelocityChangeA => |o| o.body(0, |b| b.angular_velocity_change),
+    FinalVelocityBX => |o| o.body(1, |b| b.velocity[0]),
+    FinalVelocityBY => |o| o.body(1, |b| b.velocity[1]),
+    FinalAngularVelocityB => |o| o.body(1, |b| b.angular_velocity),
+    VelocityChangeBX => |o| o.body(1, |b| b.velocity_change[0]),
+    VelocityChangeBY => |o| o.body(1, |b| b.velocity_change[1]),
+    DeltaVB => |o| o.body(1, |b| b.delta_v),
+    AngularVelocityChangeB => |o| o.body(1, |b| b.angular_velocity_change),
+    InitialNormalContactVelocity => |o| o.contact_velocity.initial.normal,
+    InitialTangentialContactVelocity => |o| o.contact_velocity.initial.tangential,
+    FinalNormalContactVelocity => |o| o.contact_velocity.r#final.normal,
+    FinalTangentialContactVelocity => |o| o.contact_velocity.r#final.tangential,
+    NormalImpulse => |o| o.impulse.normal,
+    TangentialImpulse => |o| o.impulse.tangential,
+    ImpulseX => |o| o.impulse.x,
+    ImpulseY => |o| o.impulse.y,
+    ImpulseRatio => |o| o.impulse_ratio,
+    CriticalImpulseRatio => |o| o.critical_impulse_ratio.unwrap_or(f64::NAN),
+    Restitution => |o| o.restitution,
+    KineticRestitution => |o| o.kinetic_restitution,
+    Regime => |o| o.regime.as_str(),
+    InitialEnergy => |o| or_nan(o.energy, |e| e.initial),
+    FinalEnergy => |o| or_nan(o.energy, |e| e.r#final),
+    EnergyLoss => |o| or_nan(o.energy, |e| e.loss),
+    MaxEnergyLoss => |o| or_nan(o.energy, |e| e.max_loss),
+    NormalizedEnergyLoss => |o| or_nan(o.energy, |e| e.normalized_loss),
+});
+
+/// Each body's outputs of the two-body planar case (velocity, angular
+/// velocity, velocity change, delta-V, angular velocity change), as the
+/// model names them: the first fourteen of [`BodiesOutcome`]'s declaration.
+pub(crate) const BODY_OUTPUTS: [[Output; 7]; 2] = [
+    crate::quantity::part(BodiesOutcome::OUTPUTS, 0),
+    crate::quantity::part(BodiesOutcome::OUTPUTS, 7),
+];
+
+impl SpatialOutcome {
+    /// A number of body `k`'s outcome, `NaN` where there is no body `k`.
+    #[inline]
+    fn body(&self, k: usize, read: impl FnOnce(&SpatialBodyOutcome) -> f64) -> f64 {
+        or_nan(self.bodies.get(k).filter(|_| k < self.body_count), read)
+    }
+}
+
+answers!(SpatialOutcome {
+    FinalVelocityAX => |o| o.body(0, |b| b.velocity[0]),
+    FinalVelocityAY => |o| o.body(0, |b| b.velocity[1]),
+    FinalVelocityAZ => |o| o.body(0, |b| b.velocity[2]),
+    FinalAngularVelocityAX => |o| o.body(0, |b| b.angular_velocity[0]),
+    FinalAngularVelocityAY => |o| o.body(0, |b| b.angular_velocity[1]),
+    FinalAngularVelocityAZ => |o| o.body(0, |b| b.angular_velocity[2]),
+    VelocityChangeAX => |o| o.body(0, |b| b.velocity_change[0]),
+    VelocityChangeAY => |o| o.body(0, |b| b.velocity_change[1]),
+    VelocityChangeAZ => |o| o.body(0, |b| b.velocity_change[2]),
+    DeltaVA => |o| o.body(0, |b| b.delta_v),
+    AngularVelocityChangeAX => |o| o.body(0, |b| b.angular_velocity_change[0]),
+    AngularVelocityChangeAY => |o| o.body(0, |b| b.angular_velocity_change[1]),
+    AngularVelocityChangeAZ => |o| o.body(0, |b| b.angular_velocity_change[2]),
+    FinalVelocityBX => |o| o.body(1, |b| b.velocity[0]),
+    FinalVelocityBY => |o| o.body(1, |b| b.velocity[1]),
+    FinalVelocityBZ => |o| o.body(1, |b| b.velocity[2]),
+    FinalAngularVelocityBX => |o| o.body(1, |b| b.angular_velocity[0]),
+    FinalAngularVelocityBY => |o| o.body(1, |b| b.angular_velocity[1]),
+    FinalAngularVelocityBZ => |o| o.body(1, |b| b.angular_velocity[2]),
+    VelocityChangeBX => |o| o.body(1, |b| b.velocity_change[0]),
+    VelocityChangeBY => |o| o.body(1, |b| b.velocity_change[1]),
+    VelocityChangeBZ => |o| o.body(1, |b| b.velocity_change[2]),
+    DeltaVB => |o| o.body(1, |b| b.delta_v),
+    AngularVelocityChangeBX => |o| o.body(1, |b| b.angular_velocity_change[0]),
+    AngularVelocityChangeBY => |o| o.body(1, |b| b.angular_velocity_change[1]),
+    AngularVelocityChangeBZ => |o| o.body(1, |b| b.angular_velocity_change[2]),
+    InitialNormalContactVelocity => |o| o.contact_velocity.initial.normal,
+    InitialTangentialContactVelocityX => |o| o.contact_velocity.initial.tangential[0],
+    InitialTangentialContactVelocityY => |o| o.contact_velocity.initial.tangential[1],
+    InitialTangentialContactVelocityZ => |o| o.contact_velocity.initial.tangential[2],
+    InitialContactSpin => |o| o.contact_velocity.initial.spin,
+    FinalNormalContactVelocity => |o| o.contact_velocity.r#final.normal,
+    FinalTangentialContactVelocityX => |o| o.contact_velocity.r#final.tangential[0],
+    FinalTangentialContactVelocityY => |o| o.contact_velocity.r#final.tangential[1],
+    FinalTangentialContactVelocityZ => |o| o.contact_velocity.r#final.tangential[2],
+    FinalContactSpin => |o| o.contact_velocity.r#final.spin,
+    NormalImpulse => |o| o.impulse.normal,
+    TangentialImpulseX => |o| o.impulse.tangential[0],
+    TangentialImpulseY => |o| o.impulse.tangential[1],
+    TangentialImpulseZ => |o| o.impulse.tangential[2],
+    TorsionalImpulse => |o| o.impulse.torsional,
+    ImpulseX => |o| o.impulse.x,
+    ImpulseY => |o| o.impulse.y,
+    ImpulseZ => |o| o.impulse.z,
+    ImpulseRatio => |o| o.impulse_ratio,
+    CriticalImpulseRatio => |o| o.critical_impulse_ratio.unwrap_or(f64::NAN),
+    Restitution => |o| o.restitution,
+    Regime => |o| o.regime.as_str(),
+    TorsionalRegime => |o| o.torsional_regime.map_or(Value::Number(f64::NAN), |r| Value::Text(r.as_str())),
+    InitialEnergy => |o| or_nan(o.energy, |e| e.initial),
+    FinalEnergy => |o| or_nan(o.energy, |e| e.r#final),
+    EnergyLoss => |o| or_nan(o.energy, |e| e.loss),
+    MaxEnergyLoss => |o| or_nan(o.energy, |e| e.max_loss),
+    NormalizedEnergyLoss => |o| or_nan(o.energy, |e| e.normalized_loss),
+});
+
+/// Each body's outputs in space (velocity, angular velocity, velocity
+/// change, delta-V, angular velocity change), as the model names them: the
+/// first twenty-six of [`SpatialOutcome`]'s declaration.
+pub(crate) const SPATIAL_BODY_OUTPUTS: [[Output; 13]; 2] = [
+    crate::quantity::part(SpatialOutcome::OUTPUTS, 0),
+    crate::quantity::part(SpatialOutcome::OUTPUTS, 13),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every output of a case is read by its own reader and by no other
+    /// case's; each body list holds exactly that body's outputs.
+    #[test]
+    fn each_outcome_reads_its_declared_outputs_and_only_those() {
+        fn check<O: Answers>() {
+            for &output in Output::ALL {
+                assert_eq!(
+                    O::reader(output).is_some(),
+                    O::OUTPUTS.contains(&output),
+                    "{output:?}"
+                );
+            }
+            for (i, o) in O::OUTPUTS.iter().enumerate() {
+                assert!(!O::OUTPUTS[i + 1..].contains(o), "{o:?} twice");
+            }
+        }
+        check::<PlanarOutcome>();
+        check::<TorsionalOutcome>();
+        check::<BodiesOutcome>();
+        check::<SpatialOutcome>();
+        for (k, prefix) in ["/bodies/0/", "/bodies/1/"].into_iter().enumerate() {
+            let planar = BodiesOutcome::OUTPUTS
+                .iter()
+                .filter(|o| o.path().starts_with(prefix));
+            assert!(planar.eq(BODY_OUTPUTS[k].iter()));
+            let spatial = SpatialOutcome::OUTPUTS
+                .iter()
+                .filter(|o| o.path().starts_with(prefix));
+            assert!(spatial.eq(SPATIAL_BODY_OUTPUTS[k].iter()));
+        }
+    }
+
+    /// Body B's numbers are `NaN` in a barrier impact's outcome, a regime is a name.
+    #[test]
+    fn readers_answer_nan_for_a_missing_body_and_names_for_regimes() {
+        let barrier = SpatialOutcome {
+            body_count: 1,
+            ..SpatialOutcome::default()
+        };
+        let Some(Value::Number(x)) = barrier.value(Output::FinalVelocityBX) else {
+            panic!("a number")
+        };
+        assert!(x.is_nan());
+        assert_eq!(barrier.value(Output::FinalVelocityAX), Some(Value::Number(0.0)));
+        assert_eq!(barrier.value(Output::Regime), Some(Value::Text("frictionless")));
+        assert_eq!(barrier.value(Output::SwitchSpin), None);
+        assert_eq!(PlanarOutcome::default().value(Output::FinalSpin), None);
+    }
 }

@@ -391,6 +391,32 @@ pub enum Value {
     Text(&'static str),
 }
 
+impl From<f64> for Value {
+    #[inline]
+    fn from(x: f64) -> Self {
+        Value::Number(x)
+    }
+}
+
+impl From<&'static str> for Value {
+    #[inline]
+    fn from(name: &'static str) -> Self {
+        Value::Text(name)
+    }
+}
+
+/// `N` consecutive entries of a declared list from `start`: a part of one
+/// declaration (a body's inputs or outputs) as a constant, not a second list.
+pub(crate) const fn part<T: Copy, const N: usize>(list: &[T], start: usize) -> [T; N] {
+    let mut out = [list[start]; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = list[start + i];
+        i += 1;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1315,3 +1315,52 @@ async fn a_reduction_past_the_request_deadline_is_408_and_stops() {
         tokio::time::sleep(Duration::from_millis(10)).await;
     }
 }
+
+/// Every case's sweep, in both precisions, gives the CSV bytes committed in
+/// `tests/data/golden/` (requests `*.json`, answers `*.fast.csv` and
+/// `*.exact.csv`): the answers a refactor must leave unchanged, inputs at
+/// 10^±250 that go to the exact stages included. `RESTITUTION_BLESS=1`
+/// writes the files anew (a deliberate change of answers, reviewed in the diff).
+#[tokio::test]
+async fn every_case_sweeps_to_the_committed_csv_bytes() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/golden");
+    let bless = std::env::var_os("RESTITUTION_BLESS").is_some();
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 10, "{names:?}");
+    let scratch = std::env::temp_dir().join(format!("restitution-golden-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).unwrap();
+    let mut compared = 0;
+    for request in &names {
+        let stem = request.file_stem().unwrap().to_str().unwrap();
+        for precision in ["fast", "exact"] {
+            let mut sweep: Value = serde_json::from_slice(&std::fs::read(request).unwrap()).unwrap();
+            sweep["precision"] = json!(precision);
+            let path = scratch.join(format!("{stem}.{precision}.json"));
+            std::fs::write(&path, sweep.to_string()).unwrap();
+            let mut csv = Vec::new();
+            restitution::http::offline::sweep(&path, None, "text/csv", &mut csv)
+                .await
+                .unwrap_or_else(|e| panic!("{stem} {precision}: {e}"));
+            let answer = dir.join(format!("{stem}.{precision}.csv"));
+            if bless {
+                std::fs::write(&answer, &csv).unwrap();
+            }
+            let committed = std::fs::read(&answer)
+                .unwrap_or_else(|e| panic!("{}: {e} (RESTITUTION_BLESS=1 writes it)", answer.display()));
+            assert!(
+                csv == committed,
+                "{stem} {precision}: the CSV differs from {}",
+                answer.display()
+            );
+            assert!(csv.len() > 200, "{stem} {precision}: {} bytes", csv.len());
+            compared += 1;
+        }
+    }
+    std::fs::remove_dir_all(&scratch).ok();
+    assert_eq!(compared, 2 * names.len());
+}
