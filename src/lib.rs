@@ -55,7 +55,7 @@ pub use impact::{
     SpatialContact, SpatialImpact, TorsionalImpact, Twist, solve,
 };
 pub use outcome::{
-    BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, SpatialBodyOutcome, SpatialOutcome,
+    Answers, BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, SpatialBodyOutcome, SpatialOutcome,
     TorsionalOutcome, TorsionalRegime, WorldImpulse,
 };
 pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};

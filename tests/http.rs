@@ -298,10 +298,13 @@ async fn oblique_needs_exactly_one_tangential_law() {
     let mut mixed = maw_disc(1.0);
     mixed["kinetic_restitution"] =
         json!({"value": 0.5, "approach_impulse_ratio": 0.0, "rebound_impulse_ratio": 0.0});
+    // The one wire parser of a law (conventions, rule 9): the second of two
+    // tangential members, a missing tangential law at `friction`, and
+    // `kinetic_restitution` given with `restitution` at `restitution`.
     for (request, pointer) in [
         (both, "/impulse_ratio"),
         (none, "/friction"),
-        (mixed, "/kinetic_restitution"),
+        (mixed, "/restitution"),
     ] {
         let (status, _, problem) = app.post("/v1/impacts/oblique", &request).await;
         assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);

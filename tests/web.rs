@@ -156,8 +156,10 @@ async fn the_page_and_every_asset_it_reaches_are_served_from_the_binary() {
             queue.push(value);
         }
     }
-    // The presets the page fetches.
-    queue.push("/assets/presets.json".to_owned());
+    // The JSON the page fetches: the presets, the quantity table and the operations.
+    for asset in ["presets", "quantities", "operations"] {
+        queue.push(format!("/assets/{asset}.json"));
+    }
 
     let mut seen = BTreeSet::new();
     while let Some(path) = queue.pop() {
@@ -309,4 +311,54 @@ async fn every_preset_is_a_request_the_service_answers() {
     assert_eq!(maw["id"], "maw-oblique");
     let (_, _, outcome) = app.post("/v1/impacts/oblique", &maw["request"]).await;
     assert_eq!(outcome["regime"], "sliding");
+}
+
+/// The explorer's labels and units come from the service's quantity table:
+/// the asset is the table `GET /v1/quantities` serves, and no script of the
+/// page holds an output's name or a list of operations of its own.
+#[tokio::test]
+async fn the_page_reads_the_quantity_table_and_the_operations_from_the_service() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let asset: Value = get(&app, "/assets/quantities.json").await.json().await.unwrap();
+    let served: Value = get(&app, "/v1/quantities").await.json().await.unwrap();
+    assert_eq!(asset, served);
+    let cases = asset["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 6);
+    // The forms label inputs; an output that is also an input (`e`, `μ`, `R`) is theirs.
+    let inputs: BTreeSet<&str> = cases
+        .iter()
+        .flat_map(|c| c["inputs"].as_array().unwrap())
+        .map(|i| i["name"].as_str().unwrap())
+        .collect();
+    let outputs: BTreeSet<&str> = cases
+        .iter()
+        .flat_map(|c| c["outputs"].as_array().unwrap())
+        .map(|o| o["name"].as_str().unwrap())
+        // A name of several words is a label; "regime" is also a word of the page's prose.
+        .filter(|name| name.split(' ').count() > 2 && !inputs.contains(name))
+        .collect();
+    assert!(outputs.contains("final tangential contact velocity"));
+    let operations: Value = get(&app, "/assets/operations.json").await.json().await.unwrap();
+    assert_eq!(
+        operations["/v1/impacts/spatial"],
+        serde_json::json!({"module": "impacts", "function": "impacts_spatial", "model": "SpatialContactRequest"})
+    );
+    let html = get(&app, "/").await.text().await.unwrap();
+    let mut scripts: Vec<String> = attribute_values(&html, "src")
+        .into_iter()
+        .filter(|s| s.ends_with(".js"))
+        .collect();
+    let mut seen = BTreeSet::new();
+    while let Some(path) = scripts.pop() {
+        if !seen.insert(path.clone()) {
+            continue;
+        }
+        let text = get(&app, &path).await.text().await.unwrap();
+        scripts.extend(imports(&text));
+        for name in &outputs {
+            assert!(!text.contains(name), "{path} names the output {name:?}");
+        }
+        assert!(!text.contains("'impacts_spatial'"), "{path} lists operations");
+    }
+    assert!(seen.len() > 5, "{seen:?}");
 }

@@ -11,7 +11,7 @@ use utoipa_axum::routes;
 use super::dto::{ContactDto, RegimeDto, RigidBodyDto, TorsionalRegimeDto, VelocityDto};
 use super::extract::ApiJson;
 use super::impacts::TorsionalBodyDto;
-use super::planar::{LaminaDto, PlanarContactDto, VectorDto};
+use super::impacts::bodies::{LaminaDto, PlanarContactDto, VectorDto};
 use super::problem::{ApiError, Problems};
 use crate::fit::{self, Estimate, FitError, Measured, MeasuredChange, Observation, TorsionalObservation};
 use crate::impact::{Lamina, PlanarContact};

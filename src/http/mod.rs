@@ -13,9 +13,8 @@ pub mod impacts;
 mod layers;
 pub mod log;
 pub mod offline;
-pub mod planar;
 pub mod problem;
-pub mod spatial;
+pub mod quantities;
 pub mod sweeps;
 pub mod telemetry;
 mod watchdog;
@@ -58,7 +57,7 @@ pub const REQUEST_ID: &str = "x-request-id";
                        consistent unit system. Errors are RFC 9457 problem+json with a JSON `pointer`.",
     ),
     components(schemas(problem::Problem, problem::IntervalDto)),
-    tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "fits", description = "Coefficients identified from measured impacts"), (name = "service", description = "Liveness"))
+    tags((name = "impacts", description = "One impact per request"), (name = "sweeps", description = "One case over a grid of inputs"), (name = "fits", description = "Coefficients identified from measured impacts"), (name = "service", description = "The service itself: liveness, readiness, metrics and the quantity table"))
 )]
 struct ApiDoc;
 
@@ -139,6 +138,7 @@ fn served_routes() -> OpenApiRouter<Shared> {
         .merge(impacts::router())
         .merge(sweeps::router())
         .merge(fits::router())
+        .merge(quantities::router())
         .routes(routes!(telemetry::readyz))
 }
 

@@ -90,6 +90,12 @@ static FILES: LazyLock<Vec<Asset>> = LazyLock::new(|| {
         file("plot.js", JS, include_str!("web/plot.js")),
         file("favicon.svg", SVG, include_str!("web/favicon.svg")),
         Asset::new("presets.json", JSON, presets().to_string().into_bytes()),
+        Asset::new(
+            "quantities.json",
+            JSON,
+            serde_json::to_vec(&super::quantities::table()).expect("the table serialises"),
+        ),
+        Asset::new("operations.json", JSON, operations().to_string().into_bytes()),
     ]
 });
 
@@ -212,6 +218,33 @@ fn presets() -> Value {
         })
         .collect();
     Value::Array(list)
+}
+
+/// The POST operations of the OpenAPI document, as the page's share
+/// snippets name them in the client `openapi-python-client` generates:
+/// `{path: {module, function, model}}` (the operation's tag, its id, its
+/// request schema).
+fn operations() -> Value {
+    let doc = serde_json::to_value(super::openapi()).expect("the document serialises");
+    let mut out = serde_json::Map::new();
+    for (path, item) in doc["paths"].as_object().expect("paths") {
+        let Some(post) = item.get("post") else { continue };
+        let model = post
+            .pointer("/requestBody/content/application~1json/schema/$ref")
+            .and_then(Value::as_str)
+            .and_then(|r| r.rsplit('/').next());
+        if let (Some(module), Some(function), Some(model)) = (
+            post.pointer("/tags/0").and_then(Value::as_str),
+            post["operationId"].as_str(),
+            model,
+        ) {
+            out.insert(
+                path.clone(),
+                json!({"module": module, "function": function, "model": model}),
+            );
+        }
+    }
+    Value::Object(out)
 }
 
 async fn index(headers: HeaderMap) -> Response {

@@ -8,9 +8,8 @@ use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::model::Exact;
-use crate::model::bodies::{BODY_OUTPUTS, approach, bodies};
-use crate::outcome::{BodiesOutcome, Outputs};
-use crate::quantity::Value;
+use crate::model::bodies::{approach, bodies};
+use crate::outcome::{BODY_OUTPUTS, BodiesOutcome, Outputs};
 
 /// A lamina in world axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,26 +49,10 @@ pub struct BodiesImpact {
     pub law: Law,
 }
 
-/// The inputs of each body, in request order.
+/// The inputs of each body, in request order: parts of the case's declaration.
 const BODY_INPUTS: [[Input; 7]; 2] = [
-    [
-        Input::MassA,
-        Input::InertiaA,
-        Input::PositionAX,
-        Input::PositionAY,
-        Input::VelocityAX,
-        Input::VelocityAY,
-        Input::AngularVelocityA,
-    ],
-    [
-        Input::MassB,
-        Input::InertiaB,
-        Input::PositionBX,
-        Input::PositionBY,
-        Input::VelocityBX,
-        Input::VelocityBY,
-        Input::AngularVelocityB,
-    ],
+    crate::quantity::part(<BodiesImpact as Case>::INPUTS, 0),
+    crate::quantity::part(<BodiesImpact as Case>::INPUTS, 7),
 ];
 
 /// The fast evaluation's range for this case, `2^±60`: its longest products
@@ -80,20 +63,6 @@ fn in_fast_range(x: f64) -> bool {
 }
 
 impl Lamina {
-    fn input_mut(&mut self, k: usize, input: Input) -> Option<&mut f64> {
-        let names = &BODY_INPUTS[k];
-        let slot = names.iter().position(|&i| i == input)?;
-        Some(match slot {
-            0 => &mut self.mass,
-            1 => &mut self.inertia,
-            2 => &mut self.position[0],
-            3 => &mut self.position[1],
-            4 => &mut self.velocity[0],
-            5 => &mut self.velocity[1],
-            _ => &mut self.angular_velocity,
-        })
-    }
-
     fn validate(&self, k: usize) -> Result<()> {
         let names = &BODY_INPUTS[k];
         positive(names[0], self.mass)?;
@@ -194,91 +163,33 @@ impl Case for BodiesImpact {
     type Outcome = BodiesOutcome;
     type Fixed = ();
 
-    const INPUTS: &'static [Input] = &[
-        Input::MassA,
-        Input::InertiaA,
-        Input::PositionAX,
-        Input::PositionAY,
-        Input::VelocityAX,
-        Input::VelocityAY,
-        Input::AngularVelocityA,
-        Input::MassB,
-        Input::InertiaB,
-        Input::PositionBX,
-        Input::PositionBY,
-        Input::VelocityBX,
-        Input::VelocityBY,
-        Input::AngularVelocityB,
-        Input::ContactX,
-        Input::ContactY,
-        Input::NormalX,
-        Input::NormalY,
-        Input::Restitution,
-        Input::Friction,
-        Input::ImpulseRatio,
-        Input::TangentialRestitution,
-        Input::KineticRestitution,
-        Input::ApproachImpulseRatio,
-        Input::ReboundImpulseRatio,
-    ];
-
-    const OUTPUTS: &'static [Output] = &[
-        Output::FinalVelocityAX,
-        Output::FinalVelocityAY,
-        Output::FinalAngularVelocityA,
-        Output::VelocityChangeAX,
-        Output::VelocityChangeAY,
-        Output::DeltaVA,
-        Output::AngularVelocityChangeA,
-        Output::FinalVelocityBX,
-        Output::FinalVelocityBY,
-        Output::FinalAngularVelocityB,
-        Output::VelocityChangeBX,
-        Output::VelocityChangeBY,
-        Output::DeltaVB,
-        Output::AngularVelocityChangeB,
-        Output::InitialNormalContactVelocity,
-        Output::InitialTangentialContactVelocity,
-        Output::FinalNormalContactVelocity,
-        Output::FinalTangentialContactVelocity,
-        Output::NormalImpulse,
-        Output::TangentialImpulse,
-        Output::ImpulseX,
-        Output::ImpulseY,
-        Output::ImpulseRatio,
-        Output::CriticalImpulseRatio,
-        Output::Restitution,
-        Output::KineticRestitution,
-        Output::Regime,
-        Output::InitialEnergy,
-        Output::FinalEnergy,
-        Output::EnergyLoss,
-        Output::MaxEnergyLoss,
-        Output::NormalizedEnergyLoss,
-    ];
-
-    #[inline]
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
-        let slot = match input {
-            Input::ContactX => &mut self.contact.point[0],
-            Input::ContactY => &mut self.contact.point[1],
-            Input::NormalX => &mut self.contact.normal[0],
-            Input::NormalY => &mut self.contact.normal[1],
-            _ => {
-                return match self.a.input_mut(0, input) {
-                    Some(slot) => Some(slot),
-                    None => match &mut self.b {
-                        Some(b) => match b.input_mut(1, input) {
-                            Some(slot) => Some(slot),
-                            None => self.law.input_mut(input),
-                        },
-                        None => self.law.input_mut(input),
-                    },
-                };
-            }
-        };
-        Some(slot)
-    }
+    reads!(|impact, input| {
+        MassA => Some(&mut impact.a.mass),
+        InertiaA => Some(&mut impact.a.inertia),
+        PositionAX => Some(&mut impact.a.position[0]),
+        PositionAY => Some(&mut impact.a.position[1]),
+        VelocityAX => Some(&mut impact.a.velocity[0]),
+        VelocityAY => Some(&mut impact.a.velocity[1]),
+        AngularVelocityA => Some(&mut impact.a.angular_velocity),
+        MassB => impact.b.as_mut().map(|b| &mut b.mass),
+        InertiaB => impact.b.as_mut().map(|b| &mut b.inertia),
+        PositionBX => impact.b.as_mut().map(|b| &mut b.position[0]),
+        PositionBY => impact.b.as_mut().map(|b| &mut b.position[1]),
+        VelocityBX => impact.b.as_mut().map(|b| &mut b.velocity[0]),
+        VelocityBY => impact.b.as_mut().map(|b| &mut b.velocity[1]),
+        AngularVelocityB => impact.b.as_mut().map(|b| &mut b.angular_velocity),
+        ContactX => Some(&mut impact.contact.point[0]),
+        ContactY => Some(&mut impact.contact.point[1]),
+        NormalX => Some(&mut impact.contact.normal[0]),
+        NormalY => Some(&mut impact.contact.normal[1]),
+        Restitution
+        | Friction
+        | ImpulseRatio
+        | TangentialRestitution
+        | KineticRestitution
+        | ApproachImpulseRatio
+        | ReboundImpulseRatio => impact.law.input_mut(input),
+    });
 
     /// The law's coefficients in the general fast range; the bodies and the
     /// contact are held to this case's narrower one in [`Case::evaluate`].
@@ -297,80 +208,6 @@ impl Case for BodiesImpact {
             Some(_) => "two bodies",
             None => "a body against a barrier",
         }
-    }
-
-    fn output(o: &BodiesOutcome, output: Output) -> Value {
-        let body = |k: usize| o.bodies.get(k).filter(|_| k < o.body_count);
-        let of = |k: usize, f: fn(&crate::outcome::BodyOutcome) -> f64| body(k).map_or(f64::NAN, f);
-        Value::Number(match output {
-            Output::FinalVelocityAX => of(0, |b| b.velocity[0]),
-            Output::FinalVelocityAY => of(0, |b| b.velocity[1]),
-            Output::FinalAngularVelocityA => of(0, |b| b.angular_velocity),
-            Output::VelocityChangeAX => of(0, |b| b.velocity_change[0]),
-            Output::VelocityChangeAY => of(0, |b| b.velocity_change[1]),
-            Output::DeltaVA => of(0, |b| b.delta_v),
-            Output::AngularVelocityChangeA => of(0, |b| b.angular_velocity_change),
-            Output::FinalVelocityBX => of(1, |b| b.velocity[0]),
-            Output::FinalVelocityBY => of(1, |b| b.velocity[1]),
-            Output::FinalAngularVelocityB => of(1, |b| b.angular_velocity),
-            Output::VelocityChangeBX => of(1, |b| b.velocity_change[0]),
-            Output::VelocityChangeBY => of(1, |b| b.velocity_change[1]),
-            Output::DeltaVB => of(1, |b| b.delta_v),
-            Output::AngularVelocityChangeB => of(1, |b| b.angular_velocity_change),
-            Output::InitialNormalContactVelocity => o.contact_velocity.initial.normal,
-            Output::InitialTangentialContactVelocity => o.contact_velocity.initial.tangential,
-            Output::FinalNormalContactVelocity => o.contact_velocity.r#final.normal,
-            Output::FinalTangentialContactVelocity => o.contact_velocity.r#final.tangential,
-            Output::NormalImpulse => o.impulse.normal,
-            Output::TangentialImpulse => o.impulse.tangential,
-            Output::ImpulseX => o.impulse.x,
-            Output::ImpulseY => o.impulse.y,
-            Output::ImpulseRatio => o.impulse_ratio,
-            Output::CriticalImpulseRatio => o.critical_impulse_ratio.unwrap_or(f64::NAN),
-            Output::Restitution => o.restitution,
-            Output::KineticRestitution => o.kinetic_restitution,
-            Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy => o.energy.map_or(f64::NAN, |e| e.initial),
-            Output::FinalEnergy => o.energy.map_or(f64::NAN, |e| e.r#final),
-            Output::EnergyLoss => o.energy.map_or(f64::NAN, |e| e.loss),
-            Output::MaxEnergyLoss => o.energy.map_or(f64::NAN, |e| e.max_loss),
-            Output::NormalizedEnergyLoss => o.energy.map_or(f64::NAN, |e| e.normalized_loss),
-            Output::FinalNormalVelocity
-            | Output::FinalTangentialVelocity
-            | Output::FinalAngularVelocity
-            | Output::FinalSpin
-            | Output::TorsionalImpulse
-            | Output::SwitchSpin
-            | Output::FinalVelocityAZ
-            | Output::FinalAngularVelocityAX
-            | Output::FinalAngularVelocityAY
-            | Output::FinalAngularVelocityAZ
-            | Output::VelocityChangeAZ
-            | Output::AngularVelocityChangeAX
-            | Output::AngularVelocityChangeAY
-            | Output::AngularVelocityChangeAZ
-            | Output::FinalVelocityBZ
-            | Output::FinalAngularVelocityBX
-            | Output::FinalAngularVelocityBY
-            | Output::FinalAngularVelocityBZ
-            | Output::VelocityChangeBZ
-            | Output::AngularVelocityChangeBX
-            | Output::AngularVelocityChangeBY
-            | Output::AngularVelocityChangeBZ
-            | Output::InitialTangentialContactVelocityX
-            | Output::InitialTangentialContactVelocityY
-            | Output::InitialTangentialContactVelocityZ
-            | Output::InitialContactSpin
-            | Output::FinalTangentialContactVelocityX
-            | Output::FinalTangentialContactVelocityY
-            | Output::FinalTangentialContactVelocityZ
-            | Output::FinalContactSpin
-            | Output::TangentialImpulseX
-            | Output::TangentialImpulseY
-            | Output::TangentialImpulseZ
-            | Output::ImpulseZ
-            | Output::TorsionalRegime => f64::NAN,
-        })
     }
 
     fn fix(&self, _swept: &[Input]) {}
@@ -415,5 +252,46 @@ impl Case for BodiesImpact {
             }
             Err(e) => (Err(e), stage),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lamina(seed: f64) -> Lamina {
+        Lamina {
+            mass: seed,
+            inertia: seed + 0.125,
+            position: [seed + 0.25, seed + 0.375],
+            velocity: [seed + 0.5, seed + 0.625],
+            angular_velocity: seed + 0.75,
+        }
+    }
+
+    /// A lamina's values in request order are the slots the declaration
+    /// names; a barrier impact reads no input of body B.
+    #[test]
+    fn body_values_are_the_declared_slots_in_order() {
+        let impact = BodiesImpact {
+            a: lamina(1.0),
+            b: Some(lamina(2.0)),
+            contact: PlanarContact {
+                point: [0.0, 0.0],
+                normal: [1.0, 0.0],
+            },
+            law: Law::Friction {
+                restitution: 0.5,
+                friction: 0.25,
+            },
+        };
+        for (k, b) in [impact.a, impact.b.unwrap()].iter().enumerate() {
+            for (i, &input) in BODY_INPUTS[k].iter().enumerate() {
+                assert_eq!(impact.input(input), Some(b.values()[i]), "{input:?}");
+            }
+        }
+        let barrier = BodiesImpact { b: None, ..impact };
+        assert!(BODY_INPUTS[1].iter().all(|&i| barrier.input(i).is_none()));
+        assert_eq!(barrier.reads().len(), 7 + 4 + 2);
     }
 }

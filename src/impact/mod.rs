@@ -25,6 +25,27 @@
 //! read each output from its outcome; sweeps and the HTTP layer derive their
 //! axes, columns and pointers from that.
 
+/// Declares, inside a case's `impl Case`, what the case reads: `INPUTS` (in
+/// request order) and `input_mut` from one list of `Input => slot` entries,
+/// each slot an `Option<&mut f64>` of the impact bound to `$impact` (`None`
+/// where this impact does not read it: a point mass's inertia, body B of a
+/// barrier impact); `$input` names the input for entries that share a slot
+/// expression.
+macro_rules! reads {
+    (|$impact:ident, $input:ident| { $($($name:ident)|+ => $slot:expr,)* }) => {
+        const INPUTS: &'static [Input] = &[$($(Input::$name,)+)*];
+
+        #[inline]
+        fn input_mut(&mut self, $input: Input) -> Option<&mut f64> {
+            let $impact = self;
+            match $input {
+                $($(Input::$name)|+ => $slot,)*
+                _ => None,
+            }
+        }
+    };
+}
+
 mod bodies;
 mod planar;
 mod spatial;
@@ -42,7 +63,7 @@ use crate::arith::{
 };
 use crate::error::{Input, Output, Result};
 use crate::model::{Exact, Fail};
-use crate::outcome::Outputs;
+use crate::outcome::{Answers, Outputs};
 use crate::quantity::Value;
 
 /// Which arithmetic answers a request.
@@ -119,17 +140,19 @@ pub enum Stage {
     Rational,
 }
 
-/// A physical case: an impact type whose values carry their law, with the
-/// lists of what it reads and answers.
+/// A physical case: an impact type whose values carry their law. What it
+/// reads is declared once, by [`reads!`] in its `impl Case` (its inputs in
+/// request order, each with its slot); what it answers is declared once,
+/// beside its outcome type ([`Answers`], `src/outcome.rs`).
 pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     /// The outcome of one impact (the default one is overwritten by every answer).
-    type Outcome: Copy + fmt::Debug + Default + Send;
+    type Outcome: Answers + Copy + fmt::Debug + Default + Send;
     /// What a sweep validates once when no axis changes it.
     type Fixed: Clone + fmt::Debug + Send + Sync;
     /// Every input any impact of this case may read, in request order.
     const INPUTS: &'static [Input];
-    /// Every output of the case, in response order.
-    const OUTPUTS: &'static [Output];
+    /// Every output of the case, in response order (its outcome's declaration).
+    const OUTPUTS: &'static [Output] = <Self::Outcome as Answers>::OUTPUTS;
     /// The slot of an input this impact reads (its body and law), `None` for
     /// one it does not.
     fn input_mut(&mut self, input: Input) -> Option<&mut f64>;
@@ -161,8 +184,12 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     }
     /// What the impact is, in words (for messages).
     fn describe(&self) -> &'static str;
-    /// One output's value in an outcome (a number is `NaN` when it was not computed).
-    fn output(outcome: &Self::Outcome, output: Output) -> Value;
+    /// One output's value in an outcome (a number is `NaN` when it was not
+    /// computed), `None` for an output of another case.
+    #[inline]
+    fn output(outcome: &Self::Outcome, output: Output) -> Option<Value> {
+        outcome.value(output)
+    }
     /// Validates what no axis in `swept` changes, once for a sweep.
     fn fix(&self, swept: &[Input]) -> Self::Fixed;
     /// Validates and evaluates the impact in `arithmetic` into `out`, `fixed`

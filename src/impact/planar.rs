@@ -3,11 +3,10 @@
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::Radical;
-use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
+use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
 use crate::outcome::{Outputs, PlanarOutcome};
-use crate::quantity::Value;
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
 
 /// The tangential law of a rigid-body impact, with its coefficients.
@@ -349,62 +348,40 @@ impl Case for PlanarImpact {
     type Outcome = PlanarOutcome;
     type Fixed = Fixed;
 
-    const INPUTS: &'static [Input] = &[
-        Input::Mass,
-        Input::Inertia,
-        Input::TangentialOffset,
-        Input::NormalOffset,
-        Input::NormalVelocity,
-        Input::TangentialVelocity,
-        Input::AngularVelocity,
-        Input::Restitution,
-        Input::Friction,
-        Input::ImpulseRatio,
-        Input::TangentialRestitution,
-        Input::KineticRestitution,
-        Input::ApproachImpulseRatio,
-        Input::ReboundImpulseRatio,
-    ];
-
-    const OUTPUTS: &'static [Output] = &[
-        Output::FinalNormalVelocity,
-        Output::FinalTangentialVelocity,
-        Output::FinalAngularVelocity,
-        Output::InitialNormalContactVelocity,
-        Output::InitialTangentialContactVelocity,
-        Output::FinalNormalContactVelocity,
-        Output::FinalTangentialContactVelocity,
-        Output::NormalImpulse,
-        Output::TangentialImpulse,
-        Output::ImpulseRatio,
-        Output::CriticalImpulseRatio,
-        Output::Restitution,
-        Output::KineticRestitution,
-        Output::Regime,
-        Output::InitialEnergy,
-        Output::FinalEnergy,
-        Output::EnergyLoss,
-        Output::MaxEnergyLoss,
-        Output::NormalizedEnergyLoss,
-    ];
-
-    #[inline]
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
-        let velocity = &mut self.velocity;
-        match (&mut self.body, input) {
-            (PlanarBody::PointMass { mass } | PlanarBody::Rigid { mass, .. }, Input::Mass) => Some(mass),
-            (_, Input::NormalVelocity) => Some(&mut velocity.normal),
-            (_, Input::TangentialVelocity) => Some(&mut velocity.tangential),
-            (PlanarBody::Rigid { inertia, .. }, Input::Inertia) => Some(inertia),
-            (PlanarBody::Rigid { contact, .. }, Input::TangentialOffset) => {
-                Some(&mut contact.tangential_offset)
-            }
-            (PlanarBody::Rigid { contact, .. }, Input::NormalOffset) => Some(&mut contact.normal_offset),
-            (PlanarBody::Rigid { .. }, Input::AngularVelocity) => Some(&mut velocity.angular),
-            (PlanarBody::PointMass { .. }, _) if input != Input::Restitution => None,
-            _ => self.law.input_mut(input),
-        }
-    }
+    reads!(|impact, input| {
+        Mass => match &mut impact.body {
+            PlanarBody::PointMass { mass } | PlanarBody::Rigid { mass, .. } => Some(mass),
+        },
+        Inertia => match &mut impact.body {
+            PlanarBody::Rigid { inertia, .. } => Some(inertia),
+            PlanarBody::PointMass { .. } => None,
+        },
+        TangentialOffset => match &mut impact.body {
+            PlanarBody::Rigid { contact, .. } => Some(&mut contact.tangential_offset),
+            PlanarBody::PointMass { .. } => None,
+        },
+        NormalOffset => match &mut impact.body {
+            PlanarBody::Rigid { contact, .. } => Some(&mut contact.normal_offset),
+            PlanarBody::PointMass { .. } => None,
+        },
+        NormalVelocity => Some(&mut impact.velocity.normal),
+        TangentialVelocity => Some(&mut impact.velocity.tangential),
+        AngularVelocity => match impact.body {
+            PlanarBody::Rigid { .. } => Some(&mut impact.velocity.angular),
+            PlanarBody::PointMass { .. } => None,
+        },
+        // A point mass's law is frictionless: it reads `e` alone.
+        Restitution
+        | Friction
+        | ImpulseRatio
+        | TangentialRestitution
+        | KineticRestitution
+        | ApproachImpulseRatio
+        | ReboundImpulseRatio => match impact.body {
+            PlanarBody::PointMass { .. } if input != Input::Restitution => None,
+            _ => impact.law.input_mut(input),
+        },
+    });
 
     /// Every field at once (a point mass's unread angular velocity too: at
     /// worst an impact goes to the exact stages, which answer it the same).
@@ -430,78 +407,6 @@ impl Case for PlanarImpact {
             PlanarBody::PointMass { .. } => "a point mass",
             PlanarBody::Rigid { .. } => self.law.describe(),
         }
-    }
-
-    fn output(o: &PlanarOutcome, output: Output) -> Value {
-        Value::Number(match output {
-            Output::FinalNormalVelocity => o.final_velocity.normal,
-            Output::FinalTangentialVelocity => o.final_velocity.tangential,
-            Output::FinalAngularVelocity => o.final_velocity.angular,
-            Output::InitialNormalContactVelocity => o.contact_velocity.initial.normal,
-            Output::InitialTangentialContactVelocity => o.contact_velocity.initial.tangential,
-            Output::FinalNormalContactVelocity => o.contact_velocity.r#final.normal,
-            Output::FinalTangentialContactVelocity => o.contact_velocity.r#final.tangential,
-            Output::NormalImpulse => o.impulse.normal,
-            Output::TangentialImpulse => o.impulse.tangential,
-            Output::ImpulseRatio => o.impulse_ratio,
-            Output::CriticalImpulseRatio => o.critical_impulse_ratio.unwrap_or(f64::NAN),
-            Output::Restitution => o.restitution,
-            Output::KineticRestitution => o.kinetic_restitution,
-            Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::InitialEnergy => o.energy.map_or(f64::NAN, |e| e.initial),
-            Output::FinalEnergy => o.energy.map_or(f64::NAN, |e| e.r#final),
-            Output::EnergyLoss => o.energy.map_or(f64::NAN, |e| e.loss),
-            Output::MaxEnergyLoss => o.energy.map_or(f64::NAN, |e| e.max_loss),
-            Output::NormalizedEnergyLoss => o.energy.map_or(f64::NAN, |e| e.normalized_loss),
-            Output::FinalSpin
-            | Output::TorsionalImpulse
-            | Output::SwitchSpin
-            | Output::ImpulseX
-            | Output::ImpulseY
-            | Output::FinalVelocityAX
-            | Output::FinalVelocityAY
-            | Output::FinalAngularVelocityA
-            | Output::VelocityChangeAX
-            | Output::VelocityChangeAY
-            | Output::DeltaVA
-            | Output::AngularVelocityChangeA
-            | Output::FinalVelocityBX
-            | Output::FinalVelocityBY
-            | Output::FinalAngularVelocityB
-            | Output::VelocityChangeBX
-            | Output::VelocityChangeBY
-            | Output::DeltaVB
-            | Output::AngularVelocityChangeB
-            | Output::FinalVelocityAZ
-            | Output::FinalAngularVelocityAX
-            | Output::FinalAngularVelocityAY
-            | Output::FinalAngularVelocityAZ
-            | Output::VelocityChangeAZ
-            | Output::AngularVelocityChangeAX
-            | Output::AngularVelocityChangeAY
-            | Output::AngularVelocityChangeAZ
-            | Output::FinalVelocityBZ
-            | Output::FinalAngularVelocityBX
-            | Output::FinalAngularVelocityBY
-            | Output::FinalAngularVelocityBZ
-            | Output::VelocityChangeBZ
-            | Output::AngularVelocityChangeBX
-            | Output::AngularVelocityChangeBY
-            | Output::AngularVelocityChangeBZ
-            | Output::InitialTangentialContactVelocityX
-            | Output::InitialTangentialContactVelocityY
-            | Output::InitialTangentialContactVelocityZ
-            | Output::InitialContactSpin
-            | Output::FinalTangentialContactVelocityX
-            | Output::FinalTangentialContactVelocityY
-            | Output::FinalTangentialContactVelocityZ
-            | Output::FinalContactSpin
-            | Output::TangentialImpulseX
-            | Output::TangentialImpulseY
-            | Output::TangentialImpulseZ
-            | Output::ImpulseZ
-            | Output::TorsionalRegime => f64::NAN,
-        })
     }
 
     fn fix(&self, swept: &[Input]) -> Self::Fixed {
@@ -564,6 +469,61 @@ impl Case for PlanarImpact {
                     Err(e) => refused(e),
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point mass reads its mass, its two velocities and `e`; a rigid body
+    /// under each law reads its body and exactly that law's coefficients.
+    #[test]
+    fn reads_follow_the_body_and_the_law() {
+        let point = PlanarImpact::point_mass(2.0, -1.0, 0.5, 0.75);
+        assert_eq!(
+            point.reads(),
+            [
+                Input::Mass,
+                Input::NormalVelocity,
+                Input::TangentialVelocity,
+                Input::Restitution
+            ]
+        );
+        let velocity = PlanarVelocity {
+            normal: -1.0,
+            tangential: 0.5,
+            angular: 2.0,
+        };
+        let laws = [
+            (Law::Frictionless { restitution: 0.5 }, vec![Input::Restitution]),
+            (
+                Law::KineticRestitution {
+                    value: 0.5,
+                    approach_impulse_ratio: 0.25,
+                    rebound_impulse_ratio: 0.125,
+                },
+                vec![
+                    Input::KineticRestitution,
+                    Input::ApproachImpulseRatio,
+                    Input::ReboundImpulseRatio,
+                ],
+            ),
+            (
+                Law::TangentialRestitution {
+                    restitution: 0.5,
+                    friction: 0.25,
+                    tangential_restitution: 0.125,
+                },
+                vec![Input::Restitution, Input::Friction, Input::TangentialRestitution],
+            ),
+        ];
+        for (law, coefficients) in laws {
+            let rigid = PlanarImpact::rigid(1.0, 0.5, Contact::central(0.25), velocity, law);
+            let reads = rigid.reads();
+            assert_eq!(reads[..7], PlanarImpact::INPUTS[..7]);
+            assert_eq!(reads[7..], coefficients);
         }
     }
 }

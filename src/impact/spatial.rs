@@ -9,9 +9,8 @@ use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::model::Exact;
-use crate::model::spatial::{SPATIAL_BODY_OUTPUTS, approach, leading_minors, spatial};
-use crate::outcome::{Outputs, SpatialOutcome};
-use crate::quantity::Value;
+use crate::model::spatial::{approach, leading_minors, spatial};
+use crate::outcome::{Outputs, SPATIAL_BODY_OUTPUTS, SpatialOutcome};
 
 /// A rigid body in space, in world axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,44 +66,10 @@ pub struct SpatialImpact {
     pub torsion: Option<Twist>,
 }
 
-/// The inputs of each body, in request order.
+/// The inputs of each body, in request order: parts of the case's declaration.
 const BODY_INPUTS: [[Input; 16]; 2] = [
-    [
-        Input::MassA,
-        Input::InertiaAXX,
-        Input::InertiaAYY,
-        Input::InertiaAZZ,
-        Input::InertiaAXY,
-        Input::InertiaAXZ,
-        Input::InertiaAYZ,
-        Input::PositionAX,
-        Input::PositionAY,
-        Input::PositionAZ,
-        Input::VelocityAX,
-        Input::VelocityAY,
-        Input::VelocityAZ,
-        Input::AngularVelocityAX,
-        Input::AngularVelocityAY,
-        Input::AngularVelocityAZ,
-    ],
-    [
-        Input::MassB,
-        Input::InertiaBXX,
-        Input::InertiaBYY,
-        Input::InertiaBZZ,
-        Input::InertiaBXY,
-        Input::InertiaBXZ,
-        Input::InertiaBYZ,
-        Input::PositionBX,
-        Input::PositionBY,
-        Input::PositionBZ,
-        Input::VelocityBX,
-        Input::VelocityBY,
-        Input::VelocityBZ,
-        Input::AngularVelocityBX,
-        Input::AngularVelocityBY,
-        Input::AngularVelocityBZ,
-    ],
+    crate::quantity::part(<SpatialImpact as Case>::INPUTS, 0),
+    crate::quantity::part(<SpatialImpact as Case>::INPUTS, 16),
 ];
 
 /// The tensors as a whole, for refusals.
@@ -126,11 +91,6 @@ impl RigidBody {
             10..=12 => &mut self.velocity[index - 10],
             _ => &mut self.angular_velocity[index - 13],
         }
-    }
-
-    fn input_mut(&mut self, k: usize, input: Input) -> Option<&mut f64> {
-        let index = BODY_INPUTS[k].iter().position(|&i| i == input)?;
-        Some(self.slot(index))
     }
 
     fn values(&self) -> [f64; 16] {
@@ -182,15 +142,6 @@ impl Twist {
         in_range(Input::TorsionalFriction, self.friction, 0.0, f64::INFINITY)?;
         positive(Input::PitchRadius, self.pitch_radius)?;
         Ok(())
-    }
-
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
-        match input {
-            Input::TorsionalRestitution => Some(&mut self.restitution),
-            Input::TorsionalFriction => Some(&mut self.friction),
-            Input::PitchRadius => Some(&mut self.pitch_radius),
-            _ => None,
-        }
     }
 }
 
@@ -298,132 +249,51 @@ impl Case for SpatialImpact {
     type Outcome = SpatialOutcome;
     type Fixed = ();
 
-    const INPUTS: &'static [Input] = &[
-        Input::MassA,
-        Input::InertiaAXX,
-        Input::InertiaAYY,
-        Input::InertiaAZZ,
-        Input::InertiaAXY,
-        Input::InertiaAXZ,
-        Input::InertiaAYZ,
-        Input::PositionAX,
-        Input::PositionAY,
-        Input::PositionAZ,
-        Input::VelocityAX,
-        Input::VelocityAY,
-        Input::VelocityAZ,
-        Input::AngularVelocityAX,
-        Input::AngularVelocityAY,
-        Input::AngularVelocityAZ,
-        Input::MassB,
-        Input::InertiaBXX,
-        Input::InertiaBYY,
-        Input::InertiaBZZ,
-        Input::InertiaBXY,
-        Input::InertiaBXZ,
-        Input::InertiaBYZ,
-        Input::PositionBX,
-        Input::PositionBY,
-        Input::PositionBZ,
-        Input::VelocityBX,
-        Input::VelocityBY,
-        Input::VelocityBZ,
-        Input::AngularVelocityBX,
-        Input::AngularVelocityBY,
-        Input::AngularVelocityBZ,
-        Input::ContactX,
-        Input::ContactY,
-        Input::ContactZ,
-        Input::NormalX,
-        Input::NormalY,
-        Input::NormalZ,
-        Input::Restitution,
-        Input::Friction,
-        Input::ImpulseRatio,
-        Input::TangentialRestitution,
-        Input::TorsionalRestitution,
-        Input::TorsionalFriction,
-        Input::PitchRadius,
-    ];
-
-    const OUTPUTS: &'static [Output] = &[
-        Output::FinalVelocityAX,
-        Output::FinalVelocityAY,
-        Output::FinalVelocityAZ,
-        Output::FinalAngularVelocityAX,
-        Output::FinalAngularVelocityAY,
-        Output::FinalAngularVelocityAZ,
-        Output::VelocityChangeAX,
-        Output::VelocityChangeAY,
-        Output::VelocityChangeAZ,
-        Output::DeltaVA,
-        Output::AngularVelocityChangeAX,
-        Output::AngularVelocityChangeAY,
-        Output::AngularVelocityChangeAZ,
-        Output::FinalVelocityBX,
-        Output::FinalVelocityBY,
-        Output::FinalVelocityBZ,
-        Output::FinalAngularVelocityBX,
-        Output::FinalAngularVelocityBY,
-        Output::FinalAngularVelocityBZ,
-        Output::VelocityChangeBX,
-        Output::VelocityChangeBY,
-        Output::VelocityChangeBZ,
-        Output::DeltaVB,
-        Output::AngularVelocityChangeBX,
-        Output::AngularVelocityChangeBY,
-        Output::AngularVelocityChangeBZ,
-        Output::InitialNormalContactVelocity,
-        Output::InitialTangentialContactVelocityX,
-        Output::InitialTangentialContactVelocityY,
-        Output::InitialTangentialContactVelocityZ,
-        Output::InitialContactSpin,
-        Output::FinalNormalContactVelocity,
-        Output::FinalTangentialContactVelocityX,
-        Output::FinalTangentialContactVelocityY,
-        Output::FinalTangentialContactVelocityZ,
-        Output::FinalContactSpin,
-        Output::NormalImpulse,
-        Output::TangentialImpulseX,
-        Output::TangentialImpulseY,
-        Output::TangentialImpulseZ,
-        Output::TorsionalImpulse,
-        Output::ImpulseX,
-        Output::ImpulseY,
-        Output::ImpulseZ,
-        Output::ImpulseRatio,
-        Output::CriticalImpulseRatio,
-        Output::Restitution,
-        Output::Regime,
-        Output::TorsionalRegime,
-        Output::InitialEnergy,
-        Output::FinalEnergy,
-        Output::EnergyLoss,
-        Output::MaxEnergyLoss,
-        Output::NormalizedEnergyLoss,
-    ];
-
-    #[inline]
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
-        let point = [Input::ContactX, Input::ContactY, Input::ContactZ];
-        let normal = [Input::NormalX, Input::NormalY, Input::NormalZ];
-        if let Some(i) = point.iter().position(|&p| p == input) {
-            return Some(&mut self.contact.point[i]);
-        }
-        if let Some(i) = normal.iter().position(|&p| p == input) {
-            return Some(&mut self.contact.normal[i]);
-        }
-        if let Some(slot) = self.a.input_mut(0, input) {
-            return Some(slot);
-        }
-        if let Some(slot) = self.b.as_mut().and_then(|b| b.input_mut(1, input)) {
-            return Some(slot);
-        }
-        if let Some(slot) = self.torsion.as_mut().and_then(|t| t.input_mut(input)) {
-            return Some(slot);
-        }
-        self.law.input_mut(input)
-    }
+    reads!(|impact, input| {
+        MassA => Some(&mut impact.a.mass),
+        InertiaAXX => Some(&mut impact.a.inertia[0]),
+        InertiaAYY => Some(&mut impact.a.inertia[1]),
+        InertiaAZZ => Some(&mut impact.a.inertia[2]),
+        InertiaAXY => Some(&mut impact.a.inertia[3]),
+        InertiaAXZ => Some(&mut impact.a.inertia[4]),
+        InertiaAYZ => Some(&mut impact.a.inertia[5]),
+        PositionAX => Some(&mut impact.a.position[0]),
+        PositionAY => Some(&mut impact.a.position[1]),
+        PositionAZ => Some(&mut impact.a.position[2]),
+        VelocityAX => Some(&mut impact.a.velocity[0]),
+        VelocityAY => Some(&mut impact.a.velocity[1]),
+        VelocityAZ => Some(&mut impact.a.velocity[2]),
+        AngularVelocityAX => Some(&mut impact.a.angular_velocity[0]),
+        AngularVelocityAY => Some(&mut impact.a.angular_velocity[1]),
+        AngularVelocityAZ => Some(&mut impact.a.angular_velocity[2]),
+        MassB => impact.b.as_mut().map(|b| &mut b.mass),
+        InertiaBXX => impact.b.as_mut().map(|b| &mut b.inertia[0]),
+        InertiaBYY => impact.b.as_mut().map(|b| &mut b.inertia[1]),
+        InertiaBZZ => impact.b.as_mut().map(|b| &mut b.inertia[2]),
+        InertiaBXY => impact.b.as_mut().map(|b| &mut b.inertia[3]),
+        InertiaBXZ => impact.b.as_mut().map(|b| &mut b.inertia[4]),
+        InertiaBYZ => impact.b.as_mut().map(|b| &mut b.inertia[5]),
+        PositionBX => impact.b.as_mut().map(|b| &mut b.position[0]),
+        PositionBY => impact.b.as_mut().map(|b| &mut b.position[1]),
+        PositionBZ => impact.b.as_mut().map(|b| &mut b.position[2]),
+        VelocityBX => impact.b.as_mut().map(|b| &mut b.velocity[0]),
+        VelocityBY => impact.b.as_mut().map(|b| &mut b.velocity[1]),
+        VelocityBZ => impact.b.as_mut().map(|b| &mut b.velocity[2]),
+        AngularVelocityBX => impact.b.as_mut().map(|b| &mut b.angular_velocity[0]),
+        AngularVelocityBY => impact.b.as_mut().map(|b| &mut b.angular_velocity[1]),
+        AngularVelocityBZ => impact.b.as_mut().map(|b| &mut b.angular_velocity[2]),
+        ContactX => Some(&mut impact.contact.point[0]),
+        ContactY => Some(&mut impact.contact.point[1]),
+        ContactZ => Some(&mut impact.contact.point[2]),
+        NormalX => Some(&mut impact.contact.normal[0]),
+        NormalY => Some(&mut impact.contact.normal[1]),
+        NormalZ => Some(&mut impact.contact.normal[2]),
+        // The planar kinetic law is refused in space ([`SpatialImpact::validate`]).
+        Restitution | Friction | ImpulseRatio | TangentialRestitution => impact.law.input_mut(input),
+        TorsionalRestitution => impact.torsion.as_mut().map(|t| &mut t.restitution),
+        TorsionalFriction => impact.torsion.as_mut().map(|t| &mut t.friction),
+        PitchRadius => impact.torsion.as_mut().map(|t| &mut t.pitch_radius),
+    });
 
     /// The laws' coefficients in the general fast range; the bodies and the
     /// contact are held to this case's narrower one in [`Case::evaluate`].
@@ -448,105 +318,6 @@ impl Case for SpatialImpact {
             Some(_) => "two bodies in space",
             None => "a body against a barrier in space",
         }
-    }
-
-    fn output(o: &SpatialOutcome, output: Output) -> Value {
-        let body = |k: usize| o.bodies.get(k).filter(|_| k < o.body_count);
-        let of =
-            |k: usize, f: &dyn Fn(&crate::outcome::SpatialBodyOutcome) -> f64| body(k).map_or(f64::NAN, f);
-        let energy = |f: fn(&crate::outcome::PlanarEnergy) -> f64| o.energy.as_ref().map_or(f64::NAN, f);
-        let (initial, last) = (&o.contact_velocity.initial, &o.contact_velocity.r#final);
-        if let Some(k) = SPATIAL_BODY_OUTPUTS
-            .iter()
-            .position(|names| names.contains(&output))
-        {
-            let i = SPATIAL_BODY_OUTPUTS[k]
-                .iter()
-                .position(|&n| n == output)
-                .unwrap_or(0);
-            return Value::Number(of(k, &|b| match i {
-                0..=2 => b.velocity[i],
-                3..=5 => b.angular_velocity[i - 3],
-                6..=8 => b.velocity_change[i - 6],
-                9 => b.delta_v,
-                _ => b.angular_velocity_change[i - 10],
-            }));
-        }
-        Value::Number(match output {
-            Output::InitialNormalContactVelocity => initial.normal,
-            Output::InitialTangentialContactVelocityX => initial.tangential[0],
-            Output::InitialTangentialContactVelocityY => initial.tangential[1],
-            Output::InitialTangentialContactVelocityZ => initial.tangential[2],
-            Output::InitialContactSpin => initial.spin,
-            Output::FinalNormalContactVelocity => last.normal,
-            Output::FinalTangentialContactVelocityX => last.tangential[0],
-            Output::FinalTangentialContactVelocityY => last.tangential[1],
-            Output::FinalTangentialContactVelocityZ => last.tangential[2],
-            Output::FinalContactSpin => last.spin,
-            Output::NormalImpulse => o.impulse.normal,
-            Output::TangentialImpulseX => o.impulse.tangential[0],
-            Output::TangentialImpulseY => o.impulse.tangential[1],
-            Output::TangentialImpulseZ => o.impulse.tangential[2],
-            Output::TorsionalImpulse => o.impulse.torsional,
-            Output::ImpulseX => o.impulse.x,
-            Output::ImpulseY => o.impulse.y,
-            Output::ImpulseZ => o.impulse.z,
-            Output::ImpulseRatio => o.impulse_ratio,
-            Output::CriticalImpulseRatio => o.critical_impulse_ratio.unwrap_or(f64::NAN),
-            Output::Restitution => o.restitution,
-            Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::TorsionalRegime => {
-                return match o.torsional_regime {
-                    Some(r) => Value::Text(r.as_str()),
-                    None => Value::Number(f64::NAN),
-                };
-            }
-            Output::InitialEnergy => energy(|e| e.initial),
-            Output::FinalEnergy => energy(|e| e.r#final),
-            Output::EnergyLoss => energy(|e| e.loss),
-            Output::MaxEnergyLoss => energy(|e| e.max_loss),
-            Output::NormalizedEnergyLoss => energy(|e| e.normalized_loss),
-            // Planar and one-body outputs, and the body outputs handled above.
-            Output::FinalNormalVelocity
-            | Output::FinalTangentialVelocity
-            | Output::FinalAngularVelocity
-            | Output::FinalSpin
-            | Output::InitialTangentialContactVelocity
-            | Output::FinalTangentialContactVelocity
-            | Output::TangentialImpulse
-            | Output::KineticRestitution
-            | Output::SwitchSpin
-            | Output::FinalAngularVelocityA
-            | Output::AngularVelocityChangeA
-            | Output::FinalAngularVelocityB
-            | Output::AngularVelocityChangeB
-            | Output::FinalVelocityAX
-            | Output::FinalVelocityAY
-            | Output::FinalVelocityAZ
-            | Output::FinalAngularVelocityAX
-            | Output::FinalAngularVelocityAY
-            | Output::FinalAngularVelocityAZ
-            | Output::VelocityChangeAX
-            | Output::VelocityChangeAY
-            | Output::VelocityChangeAZ
-            | Output::DeltaVA
-            | Output::AngularVelocityChangeAX
-            | Output::AngularVelocityChangeAY
-            | Output::AngularVelocityChangeAZ
-            | Output::FinalVelocityBX
-            | Output::FinalVelocityBY
-            | Output::FinalVelocityBZ
-            | Output::FinalAngularVelocityBX
-            | Output::FinalAngularVelocityBY
-            | Output::FinalAngularVelocityBZ
-            | Output::VelocityChangeBX
-            | Output::VelocityChangeBY
-            | Output::VelocityChangeBZ
-            | Output::DeltaVB
-            | Output::AngularVelocityChangeBX
-            | Output::AngularVelocityChangeBY
-            | Output::AngularVelocityChangeBZ => f64::NAN,
-        })
     }
 
     fn fix(&self, _swept: &[Input]) {}
@@ -588,6 +359,76 @@ impl Case for SpatialImpact {
                 )
             }
             Err(e) => (Err(e), stage),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body(seed: f64) -> RigidBody {
+        let x = |i: f64| seed + i / 16.0;
+        RigidBody {
+            mass: x(1.0),
+            inertia: [x(2.0), x(3.0), x(4.0), x(5.0), x(6.0), x(7.0)],
+            position: [x(8.0), x(9.0), x(10.0)],
+            velocity: [x(11.0), x(12.0), x(13.0)],
+            angular_velocity: [x(14.0), x(15.0), x(16.0)],
+        }
+    }
+
+    fn impact(b: Option<RigidBody>, torsion: Option<Twist>) -> SpatialImpact {
+        SpatialImpact {
+            a: body(1.0),
+            b,
+            contact: SpatialContact {
+                point: [0.1, 0.2, 0.3],
+                normal: [0.4, 0.5, 0.6],
+            },
+            law: Law::TangentialRestitution {
+                restitution: 0.5,
+                friction: 0.25,
+                tangential_restitution: 0.125,
+            },
+            torsion,
+        }
+    }
+
+    /// A body's values in request order are the slots the declaration names.
+    #[test]
+    fn body_values_are_the_declared_slots_in_order() {
+        let both = impact(Some(body(3.0)), None);
+        for (k, b) in [both.a, both.b.unwrap()].iter().enumerate() {
+            for (i, &input) in BODY_INPUTS[k].iter().enumerate() {
+                assert_eq!(both.input(input), Some(b.values()[i]), "{input:?}");
+            }
+        }
+    }
+
+    /// The inputs read: body B's only with a body B, the twist law's only
+    /// with one, the kinetic law's never; each input once.
+    #[test]
+    fn reads_follow_the_bodies_and_laws_present() {
+        let twist = Twist {
+            restitution: 0.5,
+            friction: 0.25,
+            pitch_radius: 0.01,
+        };
+        let full = impact(Some(body(3.0)), Some(twist));
+        // Every input but the impulse ratio, which tangential restitution does not read.
+        let all_but_ratio: Vec<Input> = SpatialImpact::INPUTS
+            .iter()
+            .copied()
+            .filter(|&i| i != Input::ImpulseRatio)
+            .collect();
+        assert_eq!(full.reads(), all_but_ratio);
+        let barrier = impact(None, None).reads();
+        assert_eq!(barrier.len(), all_but_ratio.len() - 16 - 3);
+        assert!(!barrier.contains(&Input::MassB) && !barrier.contains(&Input::PitchRadius));
+        assert_eq!(full.input(Input::KineticRestitution), None);
+        for (i, input) in SpatialImpact::INPUTS.iter().enumerate() {
+            assert!(!SpatialImpact::INPUTS[i + 1..].contains(input), "{input:?} twice");
         }
     }
 }

@@ -2,11 +2,10 @@
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::Radical;
-use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
+use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::model::Exact;
 use crate::model::torsional::{Torsion, torsional};
 use crate::outcome::{Outputs, TorsionalOutcome};
-use crate::quantity::Value;
 
 /// A torsional impact: a body spinning about the contact normal.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,174 +79,19 @@ impl Case for TorsionalImpact {
     type Outcome = TorsionalOutcome;
     type Fixed = ();
 
-    const INPUTS: &'static [Input] = &[
-        Input::Mass,
-        Input::NormalInertia,
-        Input::NormalVelocity,
-        Input::Spin,
-        Input::Restitution,
-        Input::TorsionalRestitution,
-        Input::TorsionalFriction,
-        Input::PitchRadius,
-    ];
-
-    const OUTPUTS: &'static [Output] = &[
-        Output::FinalNormalVelocity,
-        Output::FinalSpin,
-        Output::NormalImpulse,
-        Output::TorsionalImpulse,
-        Output::Regime,
-        Output::SwitchSpin,
-        Output::InitialEnergy,
-        Output::FinalEnergy,
-        Output::EnergyLoss,
-    ];
-
-    #[inline]
-    fn input_mut(&mut self, input: Input) -> Option<&mut f64> {
-        Some(match input {
-            Input::Mass => &mut self.mass,
-            Input::NormalInertia => &mut self.normal_inertia,
-            Input::NormalVelocity => &mut self.normal_velocity,
-            Input::Spin => &mut self.spin,
-            Input::Restitution => &mut self.restitution,
-            Input::TorsionalRestitution => &mut self.torsional_restitution,
-            Input::TorsionalFriction => &mut self.torsional_friction,
-            Input::PitchRadius => &mut self.pitch_radius,
-            Input::Inertia
-            | Input::TangentialOffset
-            | Input::NormalOffset
-            | Input::TangentialVelocity
-            | Input::AngularVelocity
-            | Input::Friction
-            | Input::ImpulseRatio
-            | Input::TangentialRestitution
-            | Input::KineticRestitution
-            | Input::ApproachImpulseRatio
-            | Input::ReboundImpulseRatio
-            | Input::MassA
-            | Input::InertiaA
-            | Input::PositionAX
-            | Input::PositionAY
-            | Input::VelocityAX
-            | Input::VelocityAY
-            | Input::AngularVelocityA
-            | Input::InertiaAXX
-            | Input::InertiaAYY
-            | Input::InertiaAZZ
-            | Input::InertiaAXY
-            | Input::InertiaAXZ
-            | Input::InertiaAYZ
-            | Input::PositionAZ
-            | Input::VelocityAZ
-            | Input::AngularVelocityAX
-            | Input::AngularVelocityAY
-            | Input::AngularVelocityAZ
-            | Input::InertiaBXX
-            | Input::InertiaBYY
-            | Input::InertiaBZZ
-            | Input::InertiaBXY
-            | Input::InertiaBXZ
-            | Input::InertiaBYZ
-            | Input::PositionBZ
-            | Input::VelocityBZ
-            | Input::AngularVelocityBX
-            | Input::AngularVelocityBY
-            | Input::AngularVelocityBZ
-            | Input::ContactZ
-            | Input::NormalZ
-            | Input::Torsion
-            | Input::MassB
-            | Input::InertiaB
-            | Input::PositionBX
-            | Input::PositionBY
-            | Input::VelocityBX
-            | Input::VelocityBY
-            | Input::AngularVelocityB
-            | Input::ContactX
-            | Input::ContactY
-            | Input::NormalX
-            | Input::NormalY
-            | Input::VelocityA
-            | Input::Normal => return None,
-        })
-    }
+    reads!(|impact, input| {
+        Mass => Some(&mut impact.mass),
+        NormalInertia => Some(&mut impact.normal_inertia),
+        NormalVelocity => Some(&mut impact.normal_velocity),
+        Spin => Some(&mut impact.spin),
+        Restitution => Some(&mut impact.restitution),
+        TorsionalRestitution => Some(&mut impact.torsional_restitution),
+        TorsionalFriction => Some(&mut impact.torsional_friction),
+        PitchRadius => Some(&mut impact.pitch_radius),
+    });
 
     fn describe(&self) -> &'static str {
         "a torsional impact"
-    }
-
-    fn output(o: &TorsionalOutcome, output: Output) -> Value {
-        let energy = o.energy;
-        Value::Number(match output {
-            Output::FinalNormalVelocity => o.final_normal_velocity,
-            Output::FinalSpin => o.final_spin,
-            Output::NormalImpulse => o.normal_impulse,
-            Output::TorsionalImpulse => o.torsional_impulse,
-            Output::Regime => return Value::Text(o.regime.as_str()),
-            Output::SwitchSpin => o.switch_spin,
-            Output::InitialEnergy => energy.map_or(f64::NAN, |e| e.initial),
-            Output::FinalEnergy => energy.map_or(f64::NAN, |e| e.r#final),
-            Output::EnergyLoss => energy.map_or(f64::NAN, |e| e.loss),
-            Output::FinalTangentialVelocity
-            | Output::FinalAngularVelocity
-            | Output::InitialNormalContactVelocity
-            | Output::InitialTangentialContactVelocity
-            | Output::FinalNormalContactVelocity
-            | Output::FinalTangentialContactVelocity
-            | Output::TangentialImpulse
-            | Output::ImpulseRatio
-            | Output::CriticalImpulseRatio
-            | Output::Restitution
-            | Output::KineticRestitution
-            | Output::MaxEnergyLoss
-            | Output::NormalizedEnergyLoss
-            | Output::ImpulseX
-            | Output::ImpulseY
-            | Output::FinalVelocityAX
-            | Output::FinalVelocityAY
-            | Output::FinalAngularVelocityA
-            | Output::VelocityChangeAX
-            | Output::VelocityChangeAY
-            | Output::DeltaVA
-            | Output::AngularVelocityChangeA
-            | Output::FinalVelocityBX
-            | Output::FinalVelocityBY
-            | Output::FinalAngularVelocityB
-            | Output::VelocityChangeBX
-            | Output::VelocityChangeBY
-            | Output::DeltaVB
-            | Output::AngularVelocityChangeB
-            | Output::FinalVelocityAZ
-            | Output::FinalAngularVelocityAX
-            | Output::FinalAngularVelocityAY
-            | Output::FinalAngularVelocityAZ
-            | Output::VelocityChangeAZ
-            | Output::AngularVelocityChangeAX
-            | Output::AngularVelocityChangeAY
-            | Output::AngularVelocityChangeAZ
-            | Output::FinalVelocityBZ
-            | Output::FinalAngularVelocityBX
-            | Output::FinalAngularVelocityBY
-            | Output::FinalAngularVelocityBZ
-            | Output::VelocityChangeBZ
-            | Output::AngularVelocityChangeBX
-            | Output::AngularVelocityChangeBY
-            | Output::AngularVelocityChangeBZ
-            | Output::InitialTangentialContactVelocityX
-            | Output::InitialTangentialContactVelocityY
-            | Output::InitialTangentialContactVelocityZ
-            | Output::InitialContactSpin
-            | Output::FinalTangentialContactVelocityX
-            | Output::FinalTangentialContactVelocityY
-            | Output::FinalTangentialContactVelocityZ
-            | Output::FinalContactSpin
-            | Output::TangentialImpulseX
-            | Output::TangentialImpulseY
-            | Output::TangentialImpulseZ
-            | Output::ImpulseZ
-            | Output::TorsionalRegime => f64::NAN,
-        })
     }
 
     fn fix(&self, _swept: &[Input]) {}

@@ -28,7 +28,9 @@ use super::{Exact, half, out, out_times_sqrt, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{BodiesImpact, Lamina};
-use crate::outcome::{BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, PlanarEnergy, WorldImpulse};
+use crate::outcome::{
+    BODY_OUTPUTS, BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, PlanarEnergy, WorldImpulse,
+};
 use crate::scene::ContactVelocity;
 
 /// One body in the field: its inputs, `1/m`, `1/I`, `r = C − G` and `ρ`.
@@ -206,28 +208,6 @@ impl<N: Field> Scene<N> {
         })
     }
 }
-
-/// The outputs of each body, in response order.
-pub(crate) const BODY_OUTPUTS: [[Output; 7]; 2] = [
-    [
-        Output::FinalVelocityAX,
-        Output::FinalVelocityAY,
-        Output::FinalAngularVelocityA,
-        Output::VelocityChangeAX,
-        Output::VelocityChangeAY,
-        Output::DeltaVA,
-        Output::AngularVelocityChangeA,
-    ],
-    [
-        Output::FinalVelocityBX,
-        Output::FinalVelocityBY,
-        Output::FinalAngularVelocityB,
-        Output::VelocityChangeBX,
-        Output::VelocityChangeBY,
-        Output::DeltaVB,
-        Output::AngularVelocityChangeB,
-    ],
-];
 
 impl<N: Field> ContactSpace<N> for Scene<N> {
     /// The spins follow from `q` at assembly.

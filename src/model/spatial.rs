@@ -40,8 +40,8 @@ use crate::arith::{Field, Radical};
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Law, RigidBody, SpatialImpact, Twist};
 use crate::outcome::{
-    Outputs, PlanarEnergy, Regime, SpatialBodyOutcome, SpatialContactVelocities, SpatialContactVelocity,
-    SpatialImpulse, SpatialOutcome, TorsionalRegime,
+    Outputs, PlanarEnergy, Regime, SPATIAL_BODY_OUTPUTS, SpatialBodyOutcome, SpatialContactVelocities,
+    SpatialContactVelocity, SpatialImpulse, SpatialOutcome, TorsionalRegime,
 };
 
 type V3<N> = [N; 3];
@@ -690,41 +690,6 @@ impl<'a, N: Radical> Scene<'a, N> {
         total
     }
 }
-
-/// The outputs of each body in response order: velocity, angular velocity,
-/// velocity change, delta-V, angular velocity change.
-pub(crate) const SPATIAL_BODY_OUTPUTS: [[Output; 13]; 2] = [
-    [
-        Output::FinalVelocityAX,
-        Output::FinalVelocityAY,
-        Output::FinalVelocityAZ,
-        Output::FinalAngularVelocityAX,
-        Output::FinalAngularVelocityAY,
-        Output::FinalAngularVelocityAZ,
-        Output::VelocityChangeAX,
-        Output::VelocityChangeAY,
-        Output::VelocityChangeAZ,
-        Output::DeltaVA,
-        Output::AngularVelocityChangeAX,
-        Output::AngularVelocityChangeAY,
-        Output::AngularVelocityChangeAZ,
-    ],
-    [
-        Output::FinalVelocityBX,
-        Output::FinalVelocityBY,
-        Output::FinalVelocityBZ,
-        Output::FinalAngularVelocityBX,
-        Output::FinalAngularVelocityBY,
-        Output::FinalAngularVelocityBZ,
-        Output::VelocityChangeBX,
-        Output::VelocityChangeBY,
-        Output::VelocityChangeBZ,
-        Output::DeltaVB,
-        Output::AngularVelocityChangeBX,
-        Output::AngularVelocityChangeBY,
-        Output::AngularVelocityChangeBZ,
-    ],
-];
 
 fn three(o: &[Output], from: usize) -> [Output; 3] {
     [o[from], o[from + 1], o[from + 2]]

@@ -22,7 +22,8 @@ pub use grid::{AxisValues, Combine, GridError, count_points, shard};
 
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Arithmetic, Case, Precision, Solver};
-use crate::outcome::Outputs;
+use crate::outcome::{Answers, Outputs};
+use crate::quantity::Value;
 
 /// One output value of a point: a number or a name (a regime).
 pub type Cell = crate::quantity::Value;
@@ -280,13 +281,31 @@ impl<C: SweepCase> Sweep<C> {
 pub struct CaseSweep<C: Case> {
     solver: Solver<C>,
     columns: Vec<Output>,
+    /// How each column is read off an outcome (the case's declaration, looked up once).
+    readers: Vec<fn(&C::Outcome) -> Value>,
+}
+
+/// Why a sweep of a case cannot be prepared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum CaseSweepError {
+    /// An axis sets an input the base impact does not read.
+    #[error("{} is not an input of this impact", .0.path())]
+    NotRead(Input),
+    /// A column names an output the case does not answer.
+    #[error("{} is not an output of this case", .0.path())]
+    NotAnswered(Output),
 }
 
 impl<C: Case> CaseSweep<C> {
     /// Prepares `base` for a sweep in which axes set `swept`, computing only
-    /// what `columns` need. Refuses (returning it) the first swept input the
-    /// base impact does not read.
-    pub fn new(base: &C, swept: &[Input], columns: Vec<Output>, precision: Precision) -> Result<Self, Input> {
+    /// what `columns` need. Refuses the first swept input the base impact
+    /// does not read, and the first column the case does not answer.
+    pub fn new(
+        base: &C,
+        swept: &[Input],
+        columns: Vec<Output>,
+        precision: Precision,
+    ) -> Result<Self, CaseSweepError> {
         CaseSweep::in_arithmetic(base, swept, columns, precision.into())
     }
 
@@ -296,13 +315,18 @@ impl<C: Case> CaseSweep<C> {
         swept: &[Input],
         columns: Vec<Output>,
         arithmetic: Arithmetic,
-    ) -> Result<Self, Input> {
+    ) -> Result<Self, CaseSweepError> {
         if let Some(&unread) = swept.iter().find(|&&i| base.input(i).is_none()) {
-            return Err(unread);
+            return Err(CaseSweepError::NotRead(unread));
         }
+        let readers = columns
+            .iter()
+            .map(|&c| C::Outcome::reader(c).ok_or(CaseSweepError::NotAnswered(c)))
+            .collect::<Result<_, _>>()?;
         Ok(CaseSweep {
             solver: Solver::in_arithmetic(base, swept, Outputs::needed_by(&columns), arithmetic),
             columns,
+            readers,
         })
     }
 
@@ -342,8 +366,8 @@ impl<C: Case> SweepCase for CaseSweep<C> {
     fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
         let mut outcome = C::Outcome::default();
         self.solver.solve_into(point, &mut outcome)?;
-        for (cell, &column) in cells.iter_mut().zip(&self.columns) {
-            *cell = C::output(&outcome, column);
+        for (cell, read) in cells.iter_mut().zip(&self.readers) {
+            *cell = read(&outcome);
         }
         Ok(())
     }
@@ -598,7 +622,7 @@ mod tests {
             vec![Output::Regime],
             Precision::Fast,
         );
-        assert_eq!(refused.err(), Some(Input::ImpulseRatio));
+        assert_eq!(refused.err(), Some(CaseSweepError::NotRead(Input::ImpulseRatio)));
     }
 
     #[test]

@@ -42,7 +42,7 @@ pub fn sweep_is_single_solves<C: Case>(base: &C, input: Input, values: &[f64]) -
                     }
                     assert_eq!(
                         bits(cell),
-                        bits(&C::output(&outcome, column)),
+                        bits(&C::output(&outcome, column).expect("an output of the case")),
                         "{column:?} at {input:?} = {x:e} (row {}): {impact:?}",
                         row.index
                     );

@@ -42,10 +42,11 @@ use self::stream::stream;
 use super::ServiceConfig;
 use super::dto::PrecisionDto;
 use super::extract::{ApiJson, parse_value};
-use super::impacts::{NormalRequest, ObliqueRequest, TangentialRequest, TorsionalRequest};
-use super::planar::PlanarContactRequest;
+use super::impacts::{
+    NormalRequest, ObliqueRequest, PlanarContactRequest, SpatialContactRequest, TangentialRequest,
+    TorsionalRequest,
+};
 use super::problem::{ApiError, Problem, Problems};
-use super::spatial::SpatialContactRequest;
 use super::telemetry::Telemetry;
 use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
 use crate::sweep::{CaseSweep, Sweep};

@@ -10,7 +10,7 @@ use crate::http::dto::PrecisionDto;
 use crate::http::problem::ApiError;
 use crate::impact::{Case, Precision};
 use crate::quantity::{Input, Output};
-use crate::sweep::{Axis, AxisValues, CaseSweep, GridError, Sweep};
+use crate::sweep::{Axis, AxisValues, CaseSweep, CaseSweepError, GridError, Sweep};
 
 /// The physical case a sweep evaluates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
@@ -330,12 +330,17 @@ pub(super) fn sweep<C: Case>(
         CombineDto::Product => crate::sweep::Combine::Product,
         CombineDto::Zip => crate::sweep::Combine::Zip,
     };
-    let case = CaseSweep::new(&base, &inputs, columns, precision).map_err(|input| {
-        structure(
+    let case = CaseSweep::new(&base, &inputs, columns, precision).map_err(|refused| match refused {
+        CaseSweepError::NotRead(input) => structure(
             "/axes",
             "Invalid sweep axis",
             format!("{} is not an input here", input.path()),
-        )
+        ),
+        CaseSweepError::NotAnswered(output) => structure(
+            "/outputs",
+            "Invalid sweep output",
+            format!("{} is not an output of this case", output.path()),
+        ),
     })?;
     let axes = inputs
         .into_iter()

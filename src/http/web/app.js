@@ -2,14 +2,14 @@
 // fit panels, the page's state in its URL. Plain ES modules, no framework,
 // no build step; every file is embedded in the binary (src/http/web.rs).
 
-import { CASES, DEFAULTS, caseById, allFields, rangeText } from './cases.js';
+import { CASES, DEFAULTS, caseById, allFields, rangeText, setQuantities } from './cases.js';
 import { CaseForm, h } from './form.js';
 import { post, apiKey, problemText } from './api.js';
 import { drawScene } from './scene.js';
 import { renderOutcome, outcomeTsv } from './outcome.js';
 import { SweepPanel } from './sweep.js';
 import { FitPanel } from './fit.js';
-import { copy, curl, python, saveState, loadState } from './share.js';
+import { copy, curl, python, saveState, loadState, setOperations } from './share.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -127,13 +127,25 @@ const fit = new FitPanel({
   showImpactProblem,
 });
 
-async function start() {
+// A fetched JSON asset of the page, or `fallback` when it cannot be read.
+async function readJson(request, fallback) {
   try {
-    const response = await fetch('/assets/presets.json');
-    app.presets = await response.json();
+    const response = await request;
+    return response.ok ? await response.json() : fallback;
   } catch {
-    app.presets = [];
+    return fallback;
   }
+}
+
+async function start() {
+  const [presets, quantities, operations] = await Promise.all([
+    readJson(fetch('/assets/presets.json'), []),
+    readJson(fetch('/assets/quantities.json'), { cases: [] }),
+    readJson(fetch('/assets/operations.json'), {}),
+  ]);
+  app.presets = presets;
+  setQuantities(quantities);
+  setOperations(operations);
   fillSelects();
   $('api-key').value = apiKey.get();
   $('api-key').addEventListener('change', (e) => { apiKey.set(e.target.value.trim()); compute(); });

@@ -231,78 +231,34 @@ export function rangeText(range) {
 }
 const fmtBound = (x) => String(x).replace('-', '−');
 
-// Labels of the outputs: the last segments of a response pointer (indices
-// as `*`) to the paper's symbol and words.
-export const OUTPUT_LABELS = {
-  'final_velocity/normal': ['V<sub>n</sub>', 'final normal velocity of G'],
-  'final_velocity/tangential': ['V<sub>t</sub>', 'final tangential velocity of G'],
-  'final_velocity/angular': ['Ω', 'final angular velocity'],
-  'final_velocity/spin': ['Ω<sub>n</sub>', 'final spin about the normal'],
-  'contact_velocity/initial/normal': ['v<sub>cn</sub>', 'normal contact velocity before'],
-  'contact_velocity/initial/tangential': ['v<sub>ct</sub>', 'tangential contact velocity (slip) before'],
-  'contact_velocity/initial/spin': ['s', 'relative spin about n before'],
-  'contact_velocity/final/normal': ['V<sub>cn</sub>', 'normal contact velocity after'],
-  'contact_velocity/final/tangential': ['V<sub>ct</sub>', 'tangential contact velocity (slip) after'],
-  'contact_velocity/final/spin': ['S', 'relative spin about n after'],
-  'impulse/normal': ['P<sub>n</sub>', 'normal impulse'],
-  'impulse/tangential': ['P<sub>t</sub>', 'tangential impulse'],
-  'impulse/torsional': ['M<sub>n</sub>', 'torsional impulse (couple about n)'],
-  'impulse/x': ['P<sub>x</sub>', 'impulse on A, world x'],
-  'impulse/y': ['P<sub>y</sub>', 'impulse on A, world y'],
-  'impulse/z': ['P<sub>z</sub>', 'impulse on A, world z'],
-  impulse_ratio: ['μ', 'impulse ratio P<sub>t</sub>/P<sub>n</sub>'],
-  critical_impulse_ratio: ['μ<sub>c</sub>', 'critical impulse ratio (sticking)'],
-  restitution: ['e', 'coefficient of restitution'],
-  kinetic_restitution: ['R', 'kinetic coefficient of restitution'],
-  regime: ['', 'branch of the law that answered'],
-  torsional_regime: ['', 'branch of the twist law'],
-  switch_spin: ['ω<sub>s</sub>', 'spin where the torsional branches meet (Eq 31)'],
-  'energy/initial': ['T<sub>i</sub>', 'initial kinetic energy'],
-  'energy/final': ['T<sub>f</sub>', 'final kinetic energy'],
-  'energy/loss': ['T<sub>L</sub>', 'energy lost'],
-  'energy/max_loss': ['T<sub>M</sub>', 'largest loss the contact can produce'],
-  'energy/normalized_loss': ['T<sub>L</sub>*', 'T<sub>L</sub>/T<sub>M</sub>'],
-  precision: ['', 'precision of the answer'],
-  'bodies/*/velocity/x': ['V<sub>x</sub>', 'final velocity of G, x'],
-  'bodies/*/velocity/y': ['V<sub>y</sub>', 'final velocity of G, y'],
-  'bodies/*/velocity/z': ['V<sub>z</sub>', 'final velocity of G, z'],
-  'bodies/*/velocity_change/x': ['ΔV<sub>x</sub>', 'velocity change, x'],
-  'bodies/*/velocity_change/y': ['ΔV<sub>y</sub>', 'velocity change, y'],
-  'bodies/*/velocity_change/z': ['ΔV<sub>z</sub>', 'velocity change, z'],
-  'bodies/*/delta_v': ['|ΔV|', 'delta-V'],
-  'bodies/*/angular_velocity': ['Ω', 'final angular velocity'],
-  'bodies/*/angular_velocity/x': ['Ω<sub>x</sub>', 'final angular velocity, x'],
-  'bodies/*/angular_velocity/y': ['Ω<sub>y</sub>', 'final angular velocity, y'],
-  'bodies/*/angular_velocity/z': ['Ω<sub>z</sub>', 'final angular velocity, z'],
-  'bodies/*/angular_velocity_change': ['ΔΩ', 'angular velocity change'],
-  'bodies/*/angular_velocity_change/x': ['ΔΩ<sub>x</sub>', 'angular velocity change, x'],
-  'bodies/*/angular_velocity_change/y': ['ΔΩ<sub>y</sub>', 'angular velocity change, y'],
-  'bodies/*/angular_velocity_change/z': ['ΔΩ<sub>z</sub>', 'angular velocity change, z'],
-  'contact_velocity/initial/tangential/x': ['v<sub>ct,x</sub>', 'slip before, x'],
-  'contact_velocity/initial/tangential/y': ['v<sub>ct,y</sub>', 'slip before, y'],
-  'contact_velocity/initial/tangential/z': ['v<sub>ct,z</sub>', 'slip before, z'],
-  'contact_velocity/final/tangential/x': ['V<sub>ct,x</sub>', 'slip after, x'],
-  'contact_velocity/final/tangential/y': ['V<sub>ct,y</sub>', 'slip after, y'],
-  'contact_velocity/final/tangential/z': ['V<sub>ct,z</sub>', 'slip after, z'],
-  'impulse/tangential/x': ['P<sub>t,x</sub>', 'tangential impulse, x'],
-  'impulse/tangential/y': ['P<sub>t,y</sub>', 'tangential impulse, y'],
-  'impulse/tangential/z': ['P<sub>t,z</sub>', 'tangential impulse, z'],
-};
+// The outputs' labels and units, from the service's quantity table
+// (/assets/quantities.json, made from the solver's declarations): the page
+// holds no list of its own. `setQuantities` is given the table at start-up.
+const QUANTITIES = new Map();
 
-// Units of outputs, by the same keys' first segment or whole key.
-export function outputUnit(key) {
-  if (/ratio|restitution|normalized_loss|regime|precision/.test(key)) return '';
-  if (key.startsWith('energy')) return 'J';
-  if (key.startsWith('impulse/torsional')) return 'N m s';
-  if (key.startsWith('impulse')) return 'N s';
-  if (/angular|spin/.test(key)) return 'rad/s';
-  return 'm/s';
+export function setQuantities(table) {
+  QUANTITIES.clear();
+  for (const c of table?.cases || []) {
+    for (const q of [...c.inputs, ...c.outputs]) QUANTITIES.set(q.path, q);
+  }
 }
 
+// The paper's symbol as HTML: `V_ct` → V<sub>ct</sub>.
+const symbolHtml = (symbol) => {
+  const [base, ...sub] = symbol.split('_');
+  const escape = (t) => t.replace(/&/g, '&amp;').replace(/</g, '&lt;');
+  return sub.length ? `${escape(base)}<sub>${escape(sub.join('_'))}</sub>` : escape(base);
+};
+
+// A response member's label: {sym (HTML), text, unit}; a member the table
+// does not name (the precision) by its pointer.
 export function outputLabel(pointer) {
-  const key = pointer.replace(/^\//, '').replace(/\/\d+\//g, '/*/');
-  const found = OUTPUT_LABELS[key];
-  const body = pointer.match(/^\/bodies\/(\d+)\//);
-  const who = body ? (body[1] === '0' ? 'A: ' : 'B: ') : '';
-  return found ? { sym: found[0], text: who + found[1], unit: outputUnit(key) } : { sym: '', text: who + key, unit: outputUnit(key) };
+  const q = QUANTITIES.get(pointer);
+  if (!q) return { sym: '', text: pointer.replace(/^\//, ''), unit: '' };
+  const named = q.unit === '';
+  return {
+    sym: named ? '' : symbolHtml(q.symbol),
+    text: q.name,
+    unit: named || q.unit === '1' ? '' : q.unit,
+  };
 }

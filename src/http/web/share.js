@@ -87,26 +87,23 @@ export function pythonLiteral(value, indent = 0) {
   return `{\n${entries.map(([k, v]) => `${pad}${JSON.stringify(k)}: ${pythonLiteral(v, indent + 4)}`).join(',\n')},\n${end}}`;
 }
 
-// The operations of the generated client (openapi-python-client over
-// openapi/openapi.json): module, function and request model per path.
-const OPERATIONS = {
-  '/v1/impacts/normal': ['impacts', 'impacts_normal', 'NormalRequest'],
-  '/v1/impacts/oblique': ['impacts', 'impacts_oblique', 'ObliqueRequest'],
-  '/v1/impacts/tangential': ['impacts', 'impacts_tangential', 'TangentialRequest'],
-  '/v1/impacts/torsional': ['impacts', 'impacts_torsional', 'TorsionalRequest'],
-  '/v1/impacts/planar': ['impacts', 'impacts_planar', 'PlanarContactRequest'],
-  '/v1/impacts/spatial': ['impacts', 'impacts_spatial', 'SpatialContactRequest'],
-  '/v1/sweeps': ['sweeps', 'sweeps', 'SweepRequest'],
-  '/v1/fits/tangential': ['fits', 'fits_tangential', 'TangentialFitRequest'],
-  '/v1/fits/torsional': ['fits', 'fits_torsional', 'TorsionalFitRequest'],
-  '/v1/fits/planar': ['fits', 'fits_planar', 'PlanarFitRequest'],
-};
+// The operations of the generated client (openapi-python-client over the
+// service's OpenAPI document): module, function and request model per
+// path, read from /assets/operations.json (made from that document) at
+// start-up by `setOperations`.
+let OPERATIONS = {};
+
+export function setOperations(operations) {
+  OPERATIONS = operations || {};
+}
 
 // The request as a program using the Python client generated from the
 // service's OpenAPI document by openapi-python-client (package
 // `restitution_client`; .ci/run generates and checks it).
 export function python(path, body) {
-  const [module, fn, model] = OPERATIONS[path];
+  const operation = OPERATIONS[path];
+  if (!operation) return `# ${path} is not an operation of the service's OpenAPI document\n`;
+  const { module, function: fn, model } = operation;
   const keyed = Boolean(apiKey.get());
   const client = keyed
     ? `client = AuthenticatedClient(base_url=${JSON.stringify(location.origin)}, token=os.environ["RESTITUTION_API_KEY"])`

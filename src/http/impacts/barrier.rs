@@ -1,34 +1,20 @@
-//! `POST /v1/impacts/{normal,oblique,tangential,torsional}`: one impact each.
-//! Each request type parses into the solver's impact with `TryFrom` (a
-//! structural error names its member); handlers only solve and map back.
+//! `POST /v1/impacts/{normal,oblique,tangential}`: one body against a
+//! barrier in the paper's frame, one impact each. Each request type parses
+//! into the solver's impact with `TryFrom` (a structural error names its
+//! member); handlers only solve and map back.
 
 use axum::Json;
-use axum::http::StatusCode;
 use serde::Deserialize;
 use utoipa::ToSchema;
-use utoipa_axum::router::OpenApiRouter;
-use utoipa_axum::routes;
 
-use super::dto::{
-    ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, TorsionalResponse, VelocityDto,
-};
-use super::extract::ApiJson;
-use super::problem::{ApiError, Problems};
+use super::law::{KineticRestitutionDto, law_of, law_problem};
 use crate::error::{ImpactError, Input};
-use crate::impact::{Law, PlanarBody, PlanarImpact, Precision, TorsionalImpact, solve};
+use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
+use crate::http::extract::ApiJson;
+use crate::http::problem::{ApiError, Problems};
+use crate::impact::{Law, PlanarBody, PlanarImpact, Precision, solve};
 use crate::outcome::Outputs;
 use crate::scene::PlanarVelocity;
-
-/// The impact endpoints, with their OpenAPI operations.
-pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
-    OpenApiRouter::new()
-        .routes(routes!(impacts_normal))
-        .routes(routes!(impacts_oblique))
-        .routes(routes!(impacts_tangential))
-        .routes(routes!(impacts_torsional))
-        .routes(routes!(super::planar::impacts_planar))
-        .routes(routes!(super::spatial::impacts_spatial))
-}
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
@@ -52,21 +38,6 @@ pub struct NormalRequest {
     /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
-}
-
-/// The Appendix's two-phase model: kinetic restitution R with phase impulse ratios.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct KineticRestitutionDto {
-    /// R = P_n^R / P_n^A: kinetic coefficient of restitution (Eq 9), in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
-    pub value: f64,
-    /// μ_A = P_t^A / P_n^A: impulse ratio of the approach phase (Eq 12).
-    #[schema(example = -0.123)]
-    pub approach_impulse_ratio: f64,
-    /// μ_R = P_t^R / P_n^R: impulse ratio of the rebound phase (Eq 13).
-    #[schema(example = -0.123)]
-    pub rebound_impulse_ratio: f64,
 }
 
 /// An oblique impact: `restitution` with exactly one of `friction` or
@@ -134,69 +105,6 @@ pub struct TangentialRequest {
     pub precision: PrecisionDto,
 }
 
-/// Mass and moment of inertia about the contact normal.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct TorsionalBodyDto {
-    /// Mass m (> 0).
-    #[schema(exclusive_minimum = 0.0, example = 0.6)]
-    pub mass: f64,
-    /// I_n: moment of inertia about the normal axis (> 0).
-    #[schema(exclusive_minimum = 0.0, example = 0.003456)]
-    pub normal_inertia: f64,
-}
-
-/// Initial normal velocity and spin.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct TorsionalVelocityDto {
-    /// v_n: normal velocity (< 0: approaching).
-    #[schema(exclusive_maximum = 0.0, example = -3.0)]
-    pub normal: f64,
-    /// ω_n: spin about the normal.
-    #[schema(example = 20.0)]
-    pub spin: f64,
-}
-
-/// Torsional coefficients.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct TorsionDto {
-    /// e_z: torsional coefficient of restitution (Eq 28), in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.2)]
-    pub restitution: f64,
-    /// μ_z: torsional friction coefficient (≥ 0, a magnitude; the moment opposes the spin).
-    #[schema(minimum = 0.0, example = 0.3)]
-    pub friction: f64,
-    /// ρ_p: pitch radius of the torsional friction impulse (> 0).
-    #[schema(exclusive_minimum = 0.0, example = 0.01)]
-    pub pitch_radius: f64,
-}
-
-/// A torsional impact (section 4).
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-#[schema(example = json!({
-    "body": {"mass": 0.6, "normal_inertia": 0.003456},
-    "velocity": {"normal": -3.0, "spin": 20.0},
-    "restitution": 0.7,
-    "torsion": {"restitution": 0.2, "friction": 0.3, "pitch_radius": 0.01}
-}))]
-pub struct TorsionalRequest {
-    /// The body.
-    pub body: TorsionalBodyDto,
-    /// Initial normal velocity and spin.
-    pub velocity: TorsionalVelocityDto,
-    /// e: kinematic coefficient of restitution of the normal impact, in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.7)]
-    pub restitution: f64,
-    /// Torsional coefficients.
-    pub torsion: TorsionDto,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
-    #[serde(default)]
-    pub precision: PrecisionDto,
-}
-
 impl TryFrom<&NormalRequest> for PlanarImpact {
     type Error = ApiError;
 
@@ -226,65 +134,25 @@ impl TryFrom<&NormalRequest> for PlanarImpact {
     }
 }
 
-fn unprocessable(pointer: &str, detail: &str) -> ApiError {
-    ApiError::new(
-        StatusCode::UNPROCESSABLE_ENTITY,
-        "tangential-law",
-        "Exactly one tangential law is needed",
-        detail,
-    )
-    .at(pointer)
-}
-
 impl TryFrom<&ObliqueRequest> for PlanarImpact {
     type Error = ApiError;
 
-    /// Exactly one law: `restitution` with `friction` or `impulse_ratio`, or
-    /// `kinetic_restitution` alone.
+    /// Exactly one law, read by the one wire parser ([`law_of`]): `restitution`
+    /// with `friction` or `impulse_ratio`, or `kinetic_restitution` alone.
     fn try_from(req: &ObliqueRequest) -> Result<Self, ApiError> {
-        let law = match (req.kinetic_restitution, req.restitution) {
-            (Some(_), _)
-                if req.restitution.is_some() || req.friction.is_some() || req.impulse_ratio.is_some() =>
-            {
-                return Err(unprocessable(
-                    "/kinetic_restitution",
-                    "kinetic_restitution replaces restitution, friction and impulse_ratio: give it alone",
-                ));
-            }
-            (Some(k), _) => Law::KineticRestitution {
-                value: k.value,
-                approach_impulse_ratio: k.approach_impulse_ratio,
-                rebound_impulse_ratio: k.rebound_impulse_ratio,
-            },
-            (None, None) => {
-                return Err(unprocessable(
-                    "/restitution",
-                    "give restitution with friction or impulse_ratio, or kinetic_restitution alone",
-                ));
-            }
-            (None, Some(restitution)) => match (req.friction, req.impulse_ratio) {
-                (Some(friction), None) => Law::Friction {
-                    restitution,
-                    friction,
-                },
-                (None, Some(impulse_ratio)) => Law::ImpulseRatio {
-                    restitution,
-                    impulse_ratio,
-                },
-                (Some(_), Some(_)) => {
-                    return Err(unprocessable(
-                        "/impulse_ratio",
-                        "give friction or impulse_ratio, not both",
-                    ));
-                }
-                (None, None) => {
-                    return Err(unprocessable(
-                        "/friction",
-                        "give a tangential law: friction or impulse_ratio",
-                    ));
-                }
-            },
-        };
+        let law = law_of(
+            req.restitution,
+            req.kinetic_restitution,
+            req.friction,
+            req.impulse_ratio,
+            None,
+        )?;
+        if let Law::Frictionless { .. } = law {
+            return Err(law_problem(
+                "/friction",
+                "an oblique impact needs a tangential law: give friction or impulse_ratio with restitution, or kinetic_restitution alone",
+            ));
+        }
         Ok(rigid(req.body, req.contact, req.velocity, law))
     }
 }
@@ -314,21 +182,6 @@ fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: La
     )
 }
 
-impl From<&TorsionalRequest> for TorsionalImpact {
-    fn from(req: &TorsionalRequest) -> Self {
-        TorsionalImpact {
-            mass: req.body.mass,
-            normal_inertia: req.body.normal_inertia,
-            normal_velocity: req.velocity.normal,
-            spin: req.velocity.spin,
-            restitution: req.restitution,
-            torsional_restitution: req.torsion.restitution,
-            torsional_friction: req.torsion.friction,
-            pitch_radius: req.torsion.pitch_radius,
-        }
-    }
-}
-
 fn respond_planar(impact: PlanarImpact, precision: PrecisionDto) -> Result<PlanarResponse, ApiError> {
     let precision = Precision::from(precision);
     let outcome = solve(&impact, Outputs::ALL, precision)?;
@@ -348,13 +201,6 @@ pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> 
 /// The response to a tangential-restitution request.
 pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
     respond_planar(PlanarImpact::from(&req), req.precision)
-}
-
-/// The response to a torsional request.
-pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, ApiError> {
-    let precision = Precision::from(req.precision);
-    let outcome = solve(&TorsionalImpact::from(&req), Outputs::ALL, precision)?;
-    Ok(TorsionalResponse::from_outcome(&outcome, precision))
 }
 
 /// Normal impact of a point mass or a frictionless rigid body (section 2.1).
@@ -397,54 +243,12 @@ pub async fn impacts_tangential(
     Ok(Json(respond_tangential(req)?))
 }
 
-/// Impact with torsional restitution: the bilinear model of Eqs 28–31.
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/torsional",
-    tag = "impacts",
-    request_body(content = TorsionalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), Problems)
-)]
-pub async fn impacts_torsional(
-    ApiJson(req): ApiJson<TorsionalRequest>,
-) -> Result<Json<TorsionalResponse>, ApiError> {
-    Ok(Json(respond_torsional(req)?))
-}
-
 #[cfg(test)]
 mod tests {
     use serde_json::{Value as Json, json};
 
+    use super::super::wire_check::{inputs_resolve, outputs_resolve};
     use super::*;
-    use crate::impact::Case;
-    use crate::quantity::Value;
-
-    /// Every input a request's impact reads sits at its path in the request,
-    /// with the value the impact reads.
-    fn inputs_resolve<C: Case>(request: &Json, impact: &C) {
-        let reads = impact.reads();
-        assert!(!reads.is_empty());
-        for input in reads {
-            let at = request
-                .pointer(input.path())
-                .unwrap_or_else(|| panic!("{} in {request}", input.path()));
-            assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
-        }
-    }
-
-    /// Every output of the case sits at its path in the serialised response,
-    /// with the value the case reads off the outcome.
-    fn outputs_resolve<C: Case>(response: &Json, outcome: &C::Outcome) {
-        for &output in C::OUTPUTS {
-            let at = response
-                .pointer(output.path())
-                .unwrap_or_else(|| panic!("{} in {response}", output.path()));
-            match C::output(outcome, output) {
-                Value::Number(x) => assert_eq!(at.as_f64(), Some(x), "{}", output.path()),
-                Value::Text(name) => assert_eq!(at.as_str(), Some(name), "{}", output.path()),
-            }
-        }
-    }
 
     fn body() -> Json {
         json!({"mass": 1.25, "inertia": 0.0021})
@@ -493,23 +297,8 @@ mod tests {
                 let outcome = solve(impact, Outputs::ALL, precision).unwrap();
                 let response =
                     serde_json::to_value(PlanarResponse::from_outcome(&outcome, precision)).unwrap();
-                outputs_resolve::<PlanarImpact>(&response, &outcome);
+                outputs_resolve(&response, impact, &outcome);
             }
         }
-    }
-
-    #[test]
-    fn every_input_and_output_path_resolves_in_the_torsional_wire_types() {
-        let request = json!({"body": {"mass": 0.6, "normal_inertia": 0.003456},
-                             "velocity": {"normal": -3.0, "spin": 20.0}, "restitution": 0.7,
-                             "torsion": {"restitution": 0.2, "friction": 0.3, "pitch_radius": 0.01}});
-        let req: TorsionalRequest = serde_json::from_value(request.clone()).unwrap();
-        let impact = TorsionalImpact::from(&req);
-        inputs_resolve(&request, &impact);
-        assert_eq!(impact.reads(), TorsionalImpact::INPUTS);
-        let outcome = solve(&impact, Outputs::ALL, Precision::Fast).unwrap();
-        let response =
-            serde_json::to_value(TorsionalResponse::from_outcome(&outcome, Precision::Fast)).unwrap();
-        outputs_resolve::<TorsionalImpact>(&response, &outcome);
     }
 }

@@ -6,10 +6,11 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
-use super::extract::ApiJson;
-use super::planar::{body_count, law_of};
-use super::problem::{ApiError, Problems};
+use super::bodies::body_count;
+use super::law::law_of;
+use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
+use crate::http::extract::ApiJson;
+use crate::http::problem::{ApiError, Problems};
 use crate::impact::{Precision, RigidBody, SpatialContact, SpatialImpact, Twist, solve};
 use crate::outcome::{Outputs, SpatialBodyOutcome, SpatialContactVelocity, SpatialOutcome};
 
@@ -484,9 +485,8 @@ pub async fn impacts_spatial(
 mod tests {
     use serde_json::{Value as Json, json};
 
+    use super::super::wire_check::{inputs_resolve, outputs_resolve};
     use super::*;
-    use crate::impact::Case;
-    use crate::quantity::Value;
 
     fn request(bodies: usize, law: Json) -> Json {
         let body = |x: f64, vx: f64| {
@@ -519,30 +519,13 @@ mod tests {
                 let r = request(bodies, law);
                 let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();
                 let impact = SpatialImpact::try_from(&req).unwrap();
-                for input in impact.reads() {
-                    let at = r
-                        .pointer(input.path())
-                        .unwrap_or_else(|| panic!("{} in {r}", input.path()));
-                    assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
-                }
+                inputs_resolve(&r, &impact);
                 for precision in [Precision::Fast, Precision::Exact] {
                     let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
                     let response =
                         serde_json::to_value(SpatialContactResponse::from_outcome(&outcome, precision))
                             .unwrap();
-                    for &output in SpatialImpact::OUTPUTS {
-                        let value = SpatialImpact::output(&outcome, output);
-                        match (response.pointer(output.path()), value) {
-                            (Some(at), Value::Number(x)) => {
-                                assert_eq!(at.as_f64(), Some(x), "{}", output.path())
-                            }
-                            (Some(at), Value::Text(name)) => assert_eq!(at.as_str(), Some(name)),
-                            (None, Value::Number(x)) => {
-                                assert!(x.is_nan() && !impact.answers(output), "{}", output.path())
-                            }
-                            (None, Value::Text(_)) => panic!("{}", output.path()),
-                        }
-                    }
+                    outputs_resolve(&response, &impact, &outcome);
                 }
             }
         }

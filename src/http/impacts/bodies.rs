@@ -6,10 +6,10 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
-use super::extract::ApiJson;
-use super::impacts::KineticRestitutionDto;
-use super::problem::{ApiError, Problems};
+use super::law::{KineticRestitutionDto, law_of};
+use crate::http::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
+use crate::http::extract::ApiJson;
+use crate::http::problem::{ApiError, Problems};
 use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision, solve};
 use crate::outcome::{BodiesOutcome, BodyOutcome, Outputs};
 
@@ -115,16 +115,6 @@ pub struct PlanarContactRequest {
     pub precision: PrecisionDto,
 }
 
-fn law_problem(pointer: &str, detail: &str) -> ApiError {
-    ApiError::new(
-        StatusCode::UNPROCESSABLE_ENTITY,
-        "tangential-law",
-        "The law's members do not fit together",
-        detail,
-    )
-    .at(pointer)
-}
-
 impl PlanarContactRequest {
     fn law(&self) -> Result<Law, ApiError> {
         law_of(
@@ -135,85 +125,6 @@ impl PlanarContactRequest {
             self.tangential_restitution,
         )
     }
-}
-
-/// The law the members of a contact request name (conventions: the second of
-/// two tangential members is refused; `tangential_restitution` needs
-/// `friction`; `kinetic_restitution` replaces `restitution`).
-pub(super) fn law_of(
-    restitution: Option<f64>,
-    kinetic_restitution: Option<KineticRestitutionDto>,
-    friction: Option<f64>,
-    impulse_ratio: Option<f64>,
-    tangential_restitution: Option<f64>,
-) -> Result<Law, ApiError> {
-    let tangential = match (friction, impulse_ratio, tangential_restitution) {
-        (Some(_), Some(_), _) => {
-            return Err(law_problem(
-                "/impulse_ratio",
-                "give friction or impulse_ratio, not both",
-            ));
-        }
-        (None, Some(_), Some(_)) => {
-            return Err(law_problem(
-                "/tangential_restitution",
-                "tangential_restitution goes with friction, not with impulse_ratio",
-            ));
-        }
-        (None, None, Some(_)) => {
-            return Err(law_problem(
-                "/friction",
-                "tangential_restitution needs friction, its cap",
-            ));
-        }
-        other => other,
-    };
-    if let Some(k) = kinetic_restitution {
-        if restitution.is_some() {
-            return Err(law_problem(
-                "/restitution",
-                "kinetic_restitution replaces restitution: give one",
-            ));
-        }
-        if tangential != (None, None, None) {
-            let pointer = if tangential.0.is_some() {
-                "/friction"
-            } else {
-                "/impulse_ratio"
-            };
-            return Err(law_problem(
-                pointer,
-                "kinetic_restitution carries its own impulse ratios: give no other tangential law",
-            ));
-        }
-        return Ok(Law::KineticRestitution {
-            value: k.value,
-            approach_impulse_ratio: k.approach_impulse_ratio,
-            rebound_impulse_ratio: k.rebound_impulse_ratio,
-        });
-    }
-    let Some(restitution) = restitution else {
-        return Err(law_problem(
-            "/restitution",
-            "give restitution, or kinetic_restitution",
-        ));
-    };
-    Ok(match tangential {
-        (Some(friction), None, Some(tangential_restitution)) => Law::TangentialRestitution {
-            restitution,
-            friction,
-            tangential_restitution,
-        },
-        (Some(friction), None, None) => Law::Friction {
-            restitution,
-            friction,
-        },
-        (None, Some(impulse_ratio), None) => Law::ImpulseRatio {
-            restitution,
-            impulse_ratio,
-        },
-        _ => Law::Frictionless { restitution },
-    })
 }
 
 /// The refusal of a body count other than 1 or 2.
@@ -388,9 +299,8 @@ pub async fn impacts_planar(
 mod tests {
     use serde_json::{Value as Json, json};
 
+    use super::super::wire_check::{inputs_resolve, outputs_resolve};
     use super::*;
-    use crate::impact::Case;
-    use crate::quantity::Value;
 
     fn request(bodies: usize, law: Json) -> Json {
         let lamina = |x: f64, vx: f64| {
@@ -421,31 +331,13 @@ mod tests {
                 let r = request(bodies, law);
                 let req: PlanarContactRequest = serde_json::from_value(r.clone()).unwrap();
                 let impact = BodiesImpact::try_from(&req).unwrap();
-                for input in impact.reads() {
-                    let at = r
-                        .pointer(input.path())
-                        .unwrap_or_else(|| panic!("{} in {r}", input.path()));
-                    assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
-                }
+                inputs_resolve(&r, &impact);
                 for precision in [Precision::Fast, Precision::Exact] {
                     let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
                     let response =
                         serde_json::to_value(PlanarContactResponse::from_outcome(&outcome, precision))
                             .unwrap();
-                    for &output in BodiesImpact::OUTPUTS {
-                        let value = BodiesImpact::output(&outcome, output);
-                        match (response.pointer(output.path()), value) {
-                            (Some(at), Value::Number(x)) => {
-                                assert_eq!(at.as_f64(), Some(x), "{}", output.path())
-                            }
-                            (Some(at), Value::Text(name)) => assert_eq!(at.as_str(), Some(name)),
-                            // Body B's outputs, against a barrier.
-                            (None, Value::Number(x)) => {
-                                assert!(bodies == 1 && x.is_nan(), "{}", output.path())
-                            }
-                            (None, Value::Text(_)) => panic!("{}", output.path()),
-                        }
-                    }
+                    outputs_resolve(&response, &impact, &outcome);
                 }
             }
         }

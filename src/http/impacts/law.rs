@@ -1,0 +1,116 @@
+//! The wire form of a contact law, one for every endpoint and sweep: the
+//! members `restitution`, `kinetic_restitution`, `friction`,
+//! `impulse_ratio` and `tangential_restitution`, read into a [`Law`] by one
+//! parser with one set of messages ([`law_of`]).
+
+use axum::http::StatusCode;
+use serde::Deserialize;
+use utoipa::ToSchema;
+
+use crate::http::problem::ApiError;
+use crate::impact::Law;
+
+/// The Appendix's two-phase model: kinetic restitution R with phase impulse ratios.
+#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct KineticRestitutionDto {
+    /// R = P_n^R / P_n^A: kinetic coefficient of restitution (Eq 9), in [0, 1].
+    #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
+    pub value: f64,
+    /// μ_A = P_t^A / P_n^A: impulse ratio of the approach phase (Eq 12).
+    #[schema(example = -0.123)]
+    pub approach_impulse_ratio: f64,
+    /// μ_R = P_t^R / P_n^R: impulse ratio of the rebound phase (Eq 13).
+    #[schema(example = -0.123)]
+    pub rebound_impulse_ratio: f64,
+}
+
+/// A law whose members do not fit together, at the member the conventions name.
+pub(super) fn law_problem(pointer: &str, detail: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "tangential-law",
+        "The law's members do not fit together",
+        detail,
+    )
+    .at(pointer)
+}
+
+/// The law the members of a contact request name (conventions: the second of
+/// two tangential members is refused; `tangential_restitution` needs
+/// `friction`; `kinetic_restitution` replaces `restitution`).
+pub(super) fn law_of(
+    restitution: Option<f64>,
+    kinetic_restitution: Option<KineticRestitutionDto>,
+    friction: Option<f64>,
+    impulse_ratio: Option<f64>,
+    tangential_restitution: Option<f64>,
+) -> Result<Law, ApiError> {
+    let tangential = match (friction, impulse_ratio, tangential_restitution) {
+        (Some(_), Some(_), _) => {
+            return Err(law_problem(
+                "/impulse_ratio",
+                "give friction or impulse_ratio, not both",
+            ));
+        }
+        (None, Some(_), Some(_)) => {
+            return Err(law_problem(
+                "/tangential_restitution",
+                "tangential_restitution goes with friction, not with impulse_ratio",
+            ));
+        }
+        (None, None, Some(_)) => {
+            return Err(law_problem(
+                "/friction",
+                "tangential_restitution needs friction, its cap",
+            ));
+        }
+        other => other,
+    };
+    if let Some(k) = kinetic_restitution {
+        if restitution.is_some() {
+            return Err(law_problem(
+                "/restitution",
+                "kinetic_restitution replaces restitution: give one",
+            ));
+        }
+        if tangential != (None, None, None) {
+            let pointer = if tangential.0.is_some() {
+                "/friction"
+            } else {
+                "/impulse_ratio"
+            };
+            return Err(law_problem(
+                pointer,
+                "kinetic_restitution carries its own impulse ratios: give no other tangential law",
+            ));
+        }
+        return Ok(Law::KineticRestitution {
+            value: k.value,
+            approach_impulse_ratio: k.approach_impulse_ratio,
+            rebound_impulse_ratio: k.rebound_impulse_ratio,
+        });
+    }
+    let Some(restitution) = restitution else {
+        return Err(law_problem(
+            "/restitution",
+            "give restitution, or kinetic_restitution",
+        ));
+    };
+    Ok(match tangential {
+        (Some(friction), None, Some(tangential_restitution)) => Law::TangentialRestitution {
+            restitution,
+            friction,
+            tangential_restitution,
+        },
+        (Some(friction), None, None) => Law::Friction {
+            restitution,
+            friction,
+        },
+        (None, Some(impulse_ratio), None) => Law::ImpulseRatio {
+            restitution,
+            impulse_ratio,
+        },
+        _ => Law::Frictionless { restitution },
+    })
+}

@@ -1,0 +1,74 @@
+//! `POST /v1/impacts/…`: one impact per request, a module per case —
+//! `barrier` (normal, oblique and tangential: one body against a barrier in
+//! the paper's frame), `torsional`, `bodies` (two bodies or one against a
+//! barrier in the plane, world axes: `/v1/impacts/planar`) and `spatial` —
+//! and `law`, the wire form of a contact law that all of them read.
+
+pub mod barrier;
+pub mod bodies;
+pub mod law;
+pub mod spatial;
+pub mod torsional;
+
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+pub use self::barrier::{
+    NormalRequest, ObliqueRequest, TangentialRequest, respond_normal, respond_oblique, respond_tangential,
+};
+pub use self::bodies::PlanarContactRequest;
+pub use self::law::KineticRestitutionDto;
+pub use self::spatial::SpatialContactRequest;
+pub use self::torsional::{TorsionalBodyDto, TorsionalRequest, respond_torsional};
+
+/// The impact endpoints, with their OpenAPI operations.
+pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
+    OpenApiRouter::new()
+        .routes(routes!(barrier::impacts_normal))
+        .routes(routes!(barrier::impacts_oblique))
+        .routes(routes!(barrier::impacts_tangential))
+        .routes(routes!(torsional::impacts_torsional))
+        .routes(routes!(bodies::impacts_planar))
+        .routes(routes!(spatial::impacts_spatial))
+}
+
+/// What the wire-type tests of every case check: the request's and the
+/// response's members sit at the paths the solver's declarations give.
+#[cfg(test)]
+pub(crate) mod wire_check {
+    use serde_json::Value as Json;
+
+    use crate::impact::Case;
+    use crate::quantity::Value;
+
+    /// Every input a request's impact reads sits at its path in the request,
+    /// with the value the impact reads.
+    pub fn inputs_resolve<C: Case>(request: &Json, impact: &C) {
+        let reads = impact.reads();
+        assert!(!reads.is_empty());
+        for input in reads {
+            let at = request
+                .pointer(input.path())
+                .unwrap_or_else(|| panic!("{} in {request}", input.path()));
+            assert_eq!(at.as_f64(), impact.input(input), "{}", input.path());
+        }
+    }
+
+    /// Every output the impact answers sits at its path in the serialised
+    /// response, with the value the case reads off the outcome; one it does
+    /// not answer (body B against a barrier, the twist regime without a
+    /// twist law) is absent and `NaN`.
+    pub fn outputs_resolve<C: Case>(response: &Json, impact: &C, outcome: &C::Outcome) {
+        for &output in C::OUTPUTS {
+            let value = C::output(outcome, output).expect("an output of the case");
+            match (response.pointer(output.path()), value) {
+                (Some(at), Value::Number(x)) => assert_eq!(at.as_f64(), Some(x), "{}", output.path()),
+                (Some(at), Value::Text(name)) => assert_eq!(at.as_str(), Some(name), "{}", output.path()),
+                (None, Value::Number(x)) => {
+                    assert!(x.is_nan() && !impact.answers(output), "{}", output.path())
+                }
+                (None, Value::Text(_)) => panic!("{} in {response}", output.path()),
+            }
+        }
+    }
+}
