@@ -34,6 +34,7 @@ pub(crate) mod arith;
 pub mod error;
 pub mod fit;
 pub mod impact;
+pub mod input;
 pub mod kernels;
 pub(crate) mod model;
 pub mod outcome;

@@ -3,51 +3,13 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
-use super::planar::Law;
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
+use crate::input::{BodiesImpact, Lamina, Law};
 use crate::model::Exact;
 use crate::model::bodies::{approach, bodies};
 use crate::outcome::{BODY_OUTPUTS, BodiesOutcome, Outputs};
-
-/// A lamina in world axes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lamina {
-    /// Mass `m > 0`.
-    pub mass: f64,
-    /// Moment of inertia about the mass centre, `I > 0`.
-    pub inertia: f64,
-    /// Position of the mass centre `G`.
-    pub position: [f64; 2],
-    /// Velocity of the mass centre.
-    pub velocity: [f64; 2],
-    /// Angular velocity, counter-clockwise positive.
-    pub angular_velocity: f64,
-}
-
-/// The contact point and the normal from B into A (any non-zero length).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlanarContact {
-    /// The contact point `C`.
-    pub point: [f64; 2],
-    /// The normal `n`, from B into A (out of the barrier).
-    pub normal: [f64; 2],
-}
-
-/// One point contact between body A and body B, or A and a fixed barrier
-/// (`b: None`), under one law.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BodiesImpact {
-    /// Body A.
-    pub a: Lamina,
-    /// Body B; `None` for a barrier.
-    pub b: Option<Lamina>,
-    /// The contact.
-    pub contact: PlanarContact,
-    /// The tangential law with its coefficients.
-    pub law: Law,
-}
 
 /// The inputs of each body, in request order: parts of the case's declaration.
 const BODY_INPUTS: [[Input; 7]; 2] = [
@@ -258,6 +220,7 @@ impl Case for BodiesImpact {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::PlanarContact;
 
     fn lamina(seed: f64) -> Lamina {
         Lamina {

@@ -54,14 +54,14 @@ mod torsional;
 use std::convert::Infallible;
 use std::fmt;
 
-pub use self::bodies::{BodiesImpact, Lamina, PlanarContact};
-pub use self::planar::{Law, PlanarBody, PlanarImpact};
-pub use self::spatial::{RigidBody, SpatialContact, SpatialImpact, Twist};
-pub use self::torsional::TorsionalImpact;
 use crate::arith::{
     Bounded, Compensated, Filtered, OutOfRange, Radical, Surd, Uncertain, Undecided, Unsettled,
 };
 use crate::error::{Input, Output, Result};
+pub use crate::input::{
+    BodiesImpact, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, RigidBody, SpatialContact,
+    SpatialImpact, TorsionalImpact, Twist,
+};
 use crate::model::{Exact, Fail};
 use crate::outcome::{Answers, Outputs};
 use crate::quantity::Value;

@@ -4,56 +4,11 @@
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
+use crate::input::{Law, PlanarBody, PlanarImpact};
 use crate::model::Exact;
 use crate::model::planar::{self as model, PointMass};
 use crate::outcome::{Outputs, PlanarOutcome};
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
-
-/// The tangential law of a rigid-body impact, with its coefficients.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Law {
-    /// No tangential impulse (`μ = 0`), kinematic restitution `e ∈ [0, 1]` (section 2.1).
-    Frictionless {
-        /// `e`.
-        restitution: f64,
-    },
-    /// A prescribed impulse ratio `μ = P_t / P_n` (Eqs 2, 4). Refused when it
-    /// gives `D ≤ 0` or creates energy; the error states the admissible interval.
-    ImpulseRatio {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `μ`.
-        impulse_ratio: f64,
-    },
-    /// Coulomb friction `f ≥ 0`: `μ = μ_c` when `|μ_c| ≤ f` (sticking,
-    /// `V_ct = 0`), otherwise `|μ| = f` opposing the initial slip (sliding).
-    Friction {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `f ≥ 0`.
-        friction: f64,
-    },
-    /// The bilinear tangential-restitution model (section 3, Eqs 20–27): the
-    /// ratio that gives `V_ct = −e_t v_ct` when `|μ| ≤ f`, else sliding.
-    TangentialRestitution {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `f ≥ 0`.
-        friction: f64,
-        /// `e_t ∈ [−1, 1]` (`−1`: no tangential impulse from restitution).
-        tangential_restitution: f64,
-    },
-    /// The Appendix's two-phase kinetic restitution: `R = P_n^R / P_n^A`
-    /// (Eq 9) with the approach and rebound impulse ratios (Eqs 12, 13).
-    KineticRestitution {
-        /// `R ∈ [0, 1]`.
-        value: f64,
-        /// `μ_A = P_t^A / P_n^A`.
-        approach_impulse_ratio: f64,
-        /// `μ_R = P_t^R / P_n^R`.
-        rebound_impulse_ratio: f64,
-    },
-}
 
 impl Law {
     /// The law's coefficients checked in range, in request order.
@@ -182,41 +137,6 @@ impl Law {
             Law::KineticRestitution { .. } => "two-phase kinetic restitution",
         }
     }
-}
-
-/// The body of a planar impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PlanarBody {
-    /// A point mass: no inertia, no contact offset, no rotation; its law is
-    /// frictionless restitution.
-    PointMass {
-        /// Mass `m > 0`.
-        mass: f64,
-    },
-    /// A rigid lamina.
-    Rigid {
-        /// Mass `m > 0`.
-        mass: f64,
-        /// Centroidal moment of inertia `I = m k² > 0`.
-        inertia: f64,
-        /// Where the centre of mass sits relative to the contact point.
-        contact: Contact,
-    },
-}
-
-/// A planar impact: a body, its initial velocities and the law of the contact.
-///
-/// A point mass takes only `velocity.normal`, `velocity.tangential` and a
-/// [`Law::Frictionless`] law; any other combination is refused when solved
-/// (a spin or a tangential law needs a moment of inertia).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlanarImpact {
-    /// The body.
-    pub body: PlanarBody,
-    /// Initial velocities of the centre of mass and angular velocity.
-    pub velocity: PlanarVelocity,
-    /// The tangential law and its coefficients.
-    pub law: Law,
 }
 
 impl PlanarImpact {

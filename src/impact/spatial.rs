@@ -4,67 +4,13 @@
 
 use std::cmp::Ordering;
 
-use super::planar::Law;
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
+use crate::input::{Law, RigidBody, SpatialImpact, Twist};
 use crate::model::Exact;
 use crate::model::spatial::{approach, leading_minors, spatial};
 use crate::outcome::{Outputs, SPATIAL_BODY_OUTPUTS, SpatialOutcome};
-
-/// A rigid body in space, in world axes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RigidBody {
-    /// Mass `m > 0`.
-    pub mass: f64,
-    /// The inertia tensor about the mass centre, `[I_xx, I_yy, I_zz, I_xy,
-    /// I_xz, I_yz]`, the matrix's own entries (`I_xy = −∫ x y dm`);
-    /// symmetric positive definite.
-    pub inertia: [f64; 6],
-    /// Position of the mass centre `G`.
-    pub position: [f64; 3],
-    /// Velocity of `G`.
-    pub velocity: [f64; 3],
-    /// Angular velocity.
-    pub angular_velocity: [f64; 3],
-}
-
-/// The contact point and the normal from B into A (any non-zero length).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpatialContact {
-    /// The contact point `C`.
-    pub point: [f64; 3],
-    /// The normal `n` from B into A.
-    pub normal: [f64; 3],
-}
-
-/// The twist law about the normal (section 4 generalised).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Twist {
-    /// `e_z ∈ [0, 1]`.
-    pub restitution: f64,
-    /// `μ_z ≥ 0`.
-    pub friction: f64,
-    /// `ρ_p > 0`.
-    pub pitch_radius: f64,
-}
-
-/// One point contact in space between body A and body B, or A and a fixed
-/// barrier (`b: None`), under one tangential law and optionally a twist law.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpatialImpact {
-    /// Body A.
-    pub a: RigidBody,
-    /// Body B; `None` for a barrier.
-    pub b: Option<RigidBody>,
-    /// The contact.
-    pub contact: SpatialContact,
-    /// The tangential law (not the planar kinetic one). A prescribed
-    /// `impulse_ratio` is a magnitude `μ ≥ 0` opposing the slip.
-    pub law: Law,
-    /// The twist law, if any.
-    pub torsion: Option<Twist>,
-}
 
 /// The inputs of each body, in request order: parts of the case's declaration.
 const BODY_INPUTS: [[Input; 16]; 2] = [
@@ -366,6 +312,7 @@ impl Case for SpatialImpact {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::SpatialContact;
 
     fn body(seed: f64) -> RigidBody {
         let x = |i: f64| seed + i / 16.0;

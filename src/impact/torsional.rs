@@ -3,30 +3,10 @@
 use super::{Arithmetic, Case, Model, Stage, evaluate};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
+use crate::input::TorsionalImpact;
 use crate::model::Exact;
 use crate::model::torsional::{Torsion, torsional};
 use crate::outcome::{Outputs, TorsionalOutcome};
-
-/// A torsional impact: a body spinning about the contact normal.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TorsionalImpact {
-    /// Mass `m > 0`.
-    pub mass: f64,
-    /// Moment of inertia about the normal axis `I_n > 0`.
-    pub normal_inertia: f64,
-    /// Initial normal velocity `v_n < 0`.
-    pub normal_velocity: f64,
-    /// Initial spin about the normal `ω_n`.
-    pub spin: f64,
-    /// Kinematic coefficient of restitution `e ∈ [0, 1]`.
-    pub restitution: f64,
-    /// Torsional coefficient of restitution `e_z ∈ [0, 1]`.
-    pub torsional_restitution: f64,
-    /// Torsional friction coefficient `μ_z ≥ 0` (a magnitude).
-    pub torsional_friction: f64,
-    /// Pitch radius `ρ_p > 0` of the torsional friction impulse.
-    pub pitch_radius: f64,
-}
 
 impl TorsionalImpact {
     /// Checks every input's range and that the body approaches (`v_n < 0`).

@@ -27,7 +27,7 @@ use super::contact::{Assembly, ContactSpace, under_law};
 use super::{Exact, half, out, out_times_sqrt, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::{BodiesImpact, Lamina};
+use crate::input::{BodiesImpact, Lamina};
 use crate::outcome::{
     BODY_OUTPUTS, BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, PlanarEnergy, WorldImpulse,
 };

@@ -17,7 +17,7 @@ use std::cmp::Ordering;
 use super::{Exact, abs, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::Law;
+use crate::input::Law;
 use crate::outcome::{Outputs, Regime};
 
 /// A scene reduced to its contact space, in the field `N`.

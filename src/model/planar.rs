@@ -18,7 +18,7 @@ use super::contact::{Assembly, ContactSpace, critical_output, under_law};
 use super::{Exact, half, out};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::Law;
+use crate::input::Law;
 use crate::outcome::{ContactVelocities, Impulse, Outputs, PlanarEnergy, PlanarOutcome, Regime};
 use crate::scene::{ContactVelocity, PlanarScene, PlanarVelocity};
 

@@ -38,7 +38,7 @@ use std::cmp::Ordering;
 use super::{Exact, Fail, abs, half, out, out_times_sqrt, sign};
 use crate::arith::{Field, Radical};
 use crate::error::{ImpactError, Input, Output};
-use crate::impact::{Law, RigidBody, SpatialImpact, Twist};
+use crate::input::{Law, RigidBody, SpatialImpact, Twist};
 use crate::outcome::{
     Outputs, PlanarEnergy, Regime, SPATIAL_BODY_OUTPUTS, SpatialBodyOutcome, SpatialContactVelocities,
     SpatialContactVelocity, SpatialImpulse, SpatialOutcome, TorsionalRegime,
