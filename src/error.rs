@@ -127,6 +127,23 @@ pub enum ImpactError {
         /// Its value (rounded).
         minor: f64,
     },
+    /// An inertia tensor whose principal moments break the triangle
+    /// inequality: no rigid body has it.
+    #[error(
+        "{input} is not the inertia of a rigid body: its principal moments {moments:?} break the triangle \
+         inequality (the largest, {largest}, exceeds the sum of the other two, {others}, by more than the \
+         relative tolerance 1e-9); every body's principal moments are each at most the sum of the other two"
+    )]
+    NotRigidInertia {
+        /// The tensor.
+        input: Input,
+        /// Its principal moments, ascending (rounded).
+        moments: [f64; 3],
+        /// The largest moment.
+        largest: f64,
+        /// The sum of the other two.
+        others: f64,
+    },
     /// `D ≤ 0` in space: the branches the law chose have no positive normal impulse.
     #[error(
         "no impulse solution: under the law and branches that apply ({input}), the normal impulse would be \
@@ -196,6 +213,7 @@ impl ImpactError {
             | ImpactError::NoImpulseSolution { input, .. }
             | ImpactError::CreatesEnergy { input, .. }
             | ImpactError::NotPositiveDefinite { input, .. }
+            | ImpactError::NotRigidInertia { input, .. }
             | ImpactError::NoImpulse { input }
             | ImpactError::EnergyCreated { input, .. }
             | ImpactError::NoSlipDirection { input }
@@ -227,6 +245,7 @@ impl ImpactError {
                 "Answer would create energy"
             }
             ImpactError::NotPositiveDefinite { .. } => "Inertia tensor is not positive definite",
+            ImpactError::NotRigidInertia { .. } => "Inertia tensor is not a rigid body's",
             ImpactError::NoImpulse { .. } => "No impulse solution",
             ImpactError::NoSlipDirection { .. } => "Sliding direction is undefined",
             ImpactError::NotUnique { .. } => "Regime is not unique",
@@ -247,6 +266,7 @@ impl ImpactError {
             ImpactError::NoImpulseSolution { .. } => "no-impulse-solution",
             ImpactError::CreatesEnergy { .. } | ImpactError::EnergyCreated { .. } => "creates-energy",
             ImpactError::NotPositiveDefinite { .. } => "not-positive-definite",
+            ImpactError::NotRigidInertia { .. } => "not-rigid-inertia",
             ImpactError::NoImpulse { .. } => "no-impulse-solution",
             ImpactError::NoSlipDirection { .. } => "no-slip-direction",
             ImpactError::NotUnique { .. } => "not-unique",

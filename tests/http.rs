@@ -920,6 +920,59 @@ async fn the_spatial_contact_endpoint_answers_the_examples_and_refuses_at_the_po
         json!({"xx": "NaN", "yy": 1.0, "zz": 1.0, "xy": 0.0, "xz": 0.0, "yz": 0.0});
     let (status, _, problem) = app.post("/v1/impacts/spatial", &hostile).await;
     assert!(status.is_client_error(), "{problem}");
+    // Principal moments that break the triangle inequality: no rigid body.
+    hostile["bodies"][0]["inertia"] =
+        json!({"xx": 1.0, "yy": 1.0, "zz": 5.0, "xy": 0.0, "xz": 0.0, "yz": 0.0});
+    let (status, _, problem) = app.post("/v1/impacts/spatial", &hostile).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{problem}");
+    assert_eq!(problem["pointer"], "/bodies/0/inertia", "{problem}");
+    assert_eq!(
+        problem["type"], "urn:restitution:problem:not-rigid-inertia",
+        "{problem}"
+    );
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("triangle inequality"),
+        "{problem}"
+    );
+    // A malformed inertia names the member and the forms accepted, no Rust type.
+    for (inertia, pointer) in [
+        (
+            json!({"xx": 1.0, "yy": 1.0, "zz": 1.0, "xz": 0.0, "yz": 0.0}),
+            "/bodies/0/inertia/xy",
+        ),
+        (
+            json!({"xx": 1.0, "yy": 1.0, "zz": 1.0, "xy": "0", "xz": 0.0, "yz": 0.0}),
+            "/bodies/0/inertia/xy",
+        ),
+        (
+            json!({"sphere": {"radius": "big"}}),
+            "/bodies/0/inertia/sphere/radius",
+        ),
+        (
+            json!({"sphere": {"diameter": 1.0}}),
+            "/bodies/0/inertia/sphere/diameter",
+        ),
+        (json!({"cube": {"edge": 1.0}}), "/bodies/0/inertia"),
+        (json!(0.4), "/bodies/0/inertia"),
+    ] {
+        hostile["bodies"][0]["inertia"] = inertia.clone();
+        let (status, _, problem) = app.post("/v1/impacts/spatial", &hostile).await;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{inertia}: {problem}");
+        assert_eq!(problem["pointer"], pointer, "{inertia}: {problem}");
+        let detail = problem["detail"].as_str().unwrap();
+        for internal in ["Dto", "untagged", "variant", "f64"] {
+            assert!(!detail.contains(internal), "{inertia}: {detail}");
+        }
+        if pointer == "/bodies/0/inertia" {
+            assert!(
+                detail.contains("sphere") && detail.contains("principal"),
+                "{detail}"
+            );
+        }
+    }
     let mut zero = read("spatial_tennis_topspin.json");
     zero["contact"]["normal"] = json!({"x": 0.0, "y": 0.0, "z": 0.0});
     let (status, _, problem) = app.post("/v1/impacts/spatial", &zero).await;

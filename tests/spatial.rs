@@ -176,10 +176,11 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
         }
         let lift = |l: &Lamina, rng: &mut Rng| RigidBody {
             mass: l.mass,
-            // Any positive moments about x and y: the motion stays in the plane.
+            // Moments about x and y of a rigid body (each principal moment at
+            // most the sum of the other two): the motion stays in the plane.
             inertia: [
-                rng.log_uniform(-2.0, 2.0),
-                rng.log_uniform(-2.0, 2.0),
+                l.inertia * rng.range(0.5, 1.5),
+                l.inertia * rng.range(0.5, 1.5),
                 l.inertia,
                 0.0,
                 0.0,
@@ -687,6 +688,31 @@ fn what_space_cannot_answer_is_refused_naming_the_input() {
         !matches!(accepted, Err(ImpactError::NotPositiveDefinite { .. })),
         "{accepted:?}"
     );
+    // Principal moments that break the triangle inequality (no rigid body has
+    // them), diagonal and rotated; a lamina's `I_z = I_x + I_y` in decimal and
+    // a breach within the relative tolerance 1e-9 are accepted.
+    for (tensor, rigid) in [
+        ([1.0, 1.0, 5.0, 0.0, 0.0, 0.0], false),
+        ([3.0, 3.0, 1.0, 2.0, 0.0, 0.0], false),
+        ([1.0, 1.0, 2.0 + 1e-8, 0.0, 0.0, 0.0], false),
+        ([1.0, 1.0, 2.0 + 1e-9, 0.0, 0.0, 0.0], true),
+        ([0.1, 0.2, 0.3, 0.0, 0.0, 0.0], true),
+    ] {
+        let mut i = ball();
+        i.a.inertia = tensor;
+        let answer = solve(&i, Outputs::ALL, Precision::Fast);
+        let broken = matches!(
+            answer,
+            Err(ImpactError::NotRigidInertia {
+                input: restitution::Input::InertiaA,
+                ..
+            })
+        );
+        assert_eq!(broken, !rigid, "{tensor:?}: {answer:?}");
+        if broken {
+            assert_eq!(refusal(&i), answer.unwrap_err());
+        }
+    }
     let mut i = ball();
     i.b = Some(RigidBody {
         inertia: [f64::NAN, 1.0, 1.0, 0.0, 0.0, 0.0],

@@ -88,7 +88,9 @@ impl Precision {
 }
 
 /// How an impact is evaluated: a [`Precision`], or one arithmetic alone (for
-/// comparisons, tests and benchmarks).
+/// comparisons, tests and benchmarks). A measurement hook, hidden from the
+/// API's documentation: callers choose a [`Precision`].
+#[doc(hidden)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Arithmetic {
     /// `fast` precision: f64 with exact decisions inside the fast range, else exact.
@@ -213,7 +215,9 @@ pub fn solve<C: Case>(impact: &C, outputs: Outputs, precision: Precision) -> Res
     solve_in(impact, outputs, precision.into()).0
 }
 
-/// Solves one impact in `arithmetic`, reporting which stage answered.
+/// Solves one impact in `arithmetic`, reporting which stage answered (a
+/// measurement hook, like [`Arithmetic`]).
+#[doc(hidden)]
 pub fn solve_in<C: Case>(
     impact: &C,
     outputs: Outputs,
@@ -252,6 +256,7 @@ impl<C: Case> Solver<C> {
 
     /// The same in one `arithmetic` (for comparisons and benchmarks: what
     /// the filter of `fast` costs a sweep is `Fast` against `Unfiltered`).
+    #[doc(hidden)]
     pub fn in_arithmetic(base: &C, swept: &[Input], outputs: Outputs, arithmetic: Arithmetic) -> Self {
         let fixed_inputs: Vec<Input> = base.reads().into_iter().filter(|i| !swept.contains(i)).collect();
         Solver {

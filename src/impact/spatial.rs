@@ -78,6 +78,40 @@ impl RigidBody {
                 });
             }
         }
+        self.check_triangle_inequality(k)
+    }
+
+    /// The principal moments of a rigid body obey the triangle inequality
+    /// (each is at most the sum of the other two: `I = tr(S) E − S` with the
+    /// second-moment tensor `S = ∫ r rᵀ dm ⪰ 0`, so `2 λ_max ≤ tr I`). A tensor
+    /// written in decimal is accepted within a relative tolerance of `1e-9`
+    /// of its trace (a lamina's `I_z = I_x + I_y` rounds either way); the
+    /// eigenvalues' own error, about `1e-16` of the trace, is far below it.
+    fn check_triangle_inequality(&self, k: usize) -> Result<()> {
+        const TOLERANCE: f64 = 1e-9;
+        let [xx, yy, zz, xy, xz, yz] = self.inertia;
+        // Gershgorin's bound on λ_max decides at once where it suffices (every
+        // diagonal tensor, most rotated ones), without the eigenvalues.
+        let bound = (xx + xy.abs() + xz.abs())
+            .max(yy + xy.abs() + yz.abs())
+            .max(zz + xz.abs() + yz.abs());
+        let trace = xx + yy + zz;
+        if 2.0 * bound - trace <= TOLERANCE * trace {
+            return Ok(());
+        }
+        let tensor = nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+        let mut moments: [f64; 3] = tensor.symmetric_eigenvalues().into();
+        moments.sort_by(f64::total_cmp);
+        let [small, middle, largest] = moments;
+        let others = small + middle;
+        if largest - others > TOLERANCE * (largest + others) {
+            return Err(ImpactError::NotRigidInertia {
+                input: TENSORS[k],
+                moments,
+                largest,
+                others,
+            });
+        }
         Ok(())
     }
 }

@@ -309,7 +309,8 @@ impl<C: Case> CaseSweep<C> {
         CaseSweep::in_arithmetic(base, swept, columns, precision.into())
     }
 
-    /// The same in one `arithmetic` ([`Solver::in_arithmetic`]).
+    /// The same in one `arithmetic` ([`Solver::in_arithmetic`]; a measurement hook).
+    #[doc(hidden)]
     pub fn in_arithmetic(
         base: &C,
         swept: &[Input],

@@ -99,7 +99,11 @@ pub struct PrincipalDto {
 }
 
 /// An inertia tensor: the canonical six entries, a sphere, or principal moments.
-#[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
+///
+/// Read by its own `Deserialize` (below), which tells the forms apart by
+/// their members and names the member that is missing or wrong; the schema
+/// is the untagged one of the three forms.
+#[derive(Debug, Clone, Copy, ToSchema)]
 #[serde(untagged)]
 pub enum InertiaDto {
     /// The tensor's own entries (the canonical form).
@@ -114,6 +118,85 @@ pub enum InertiaDto {
         /// The moments and the rotation.
         principal: PrincipalDto,
     },
+}
+
+/// The forms an inertia takes, for messages.
+const INERTIA_FORMS: &str = "the tensor's six entries {\"xx\", \"yy\", \"zz\", \"xy\", \"xz\", \"yz\"}, \
+     {\"sphere\": {\"radius\", \"hollow\"}} or {\"principal\": {\"moments\", \"rotation\"}}";
+
+/// The tensor form's members, in [`TensorDto`]'s order.
+const TENSOR_ENTRIES: [&str; 6] = ["xx", "yy", "zz", "xy", "xz", "yz"];
+
+impl<'de> Deserialize<'de> for InertiaDto {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(InertiaVisitor)
+    }
+}
+
+/// Reads an inertia member by member: `sphere` or `principal` alone, else the
+/// six tensor entries; a missing entry is named (`missing field \`xy\``, so
+/// that its pointer is the entry's), an unknown member with the forms accepted.
+struct InertiaVisitor;
+
+impl<'de> serde::de::Visitor<'de> for InertiaVisitor {
+    type Value = InertiaDto;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "an inertia: {INERTIA_FORMS}")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<InertiaDto, A::Error> {
+        use serde::de::Error;
+        let mut entries = [None; 6];
+        let mut first = true;
+        while let Some(key) = map.next_key::<String>()? {
+            if first && (key == "sphere" || key == "principal") {
+                let inertia = if key == "sphere" {
+                    InertiaDto::Sphere {
+                        sphere: map.next_value()?,
+                    }
+                } else {
+                    InertiaDto::Principal {
+                        principal: map.next_value()?,
+                    }
+                };
+                if let Some(other) = map.next_key::<String>()? {
+                    return Err(A::Error::custom(format!(
+                        "unknown field `{other}`: a {key} inertia has the one member `{key}`; inertia takes {INERTIA_FORMS}"
+                    )));
+                }
+                return Ok(inertia);
+            }
+            first = false;
+            let Some(i) = TENSOR_ENTRIES.iter().position(|&e| e == key) else {
+                return Err(A::Error::custom(format!(
+                    "unknown field `{key}`: inertia takes {INERTIA_FORMS}"
+                )));
+            };
+            if entries[i].is_some() {
+                return Err(A::Error::custom(format!("duplicate field `{key}`")));
+            }
+            entries[i] = Some(map.next_value::<f64>()?);
+        }
+        let mut values = [0.0; 6];
+        for (i, entry) in entries.into_iter().enumerate() {
+            values[i] = entry.ok_or_else(|| {
+                A::Error::custom(format!(
+                    "missing field `{}`: the tensor form needs all six entries; inertia takes {INERTIA_FORMS}",
+                    TENSOR_ENTRIES[i]
+                ))
+            })?;
+        }
+        let [xx, yy, zz, xy, xz, yz] = values;
+        Ok(InertiaDto::Tensor(TensorDto {
+            xx,
+            yy,
+            zz,
+            xy,
+            xz,
+            yz,
+        }))
+    }
 }
 
 /// A rigid body in space.
