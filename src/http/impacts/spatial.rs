@@ -573,7 +573,7 @@ mod tests {
 
     fn request(bodies: usize, law: Json) -> Json {
         let body = |x: f64, vx: f64| {
-            json!({"mass": 1.5, "inertia": {"xx": 0.25, "yy": 0.5, "zz": 0.375, "xy": 0.0625, "xz": -0.03125, "yz": 0.125},
+            json!({"mass": 1.5, "inertia": {"xx": 0.375, "yy": 0.5, "zz": 0.4375, "xy": 0.0625, "xz": -0.03125, "yz": 0.0625},
                    "position": {"x": x, "y": 0.125, "z": -0.25},
                    "velocity": {"x": vx, "y": 0.75, "z": 0.5}, "angular_velocity": {"x": 1.25, "y": -2.0, "z": 3.0}})
         };

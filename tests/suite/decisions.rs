@@ -11,10 +11,8 @@
 //! the filter) decides the other way, and asserts there are some: the sets do
 //! reach the ties the filter exists for.
 
-mod common;
-
-use common::Rng;
-use common::sweep_rows::sweep_is_single_solves;
+use crate::common::Rng;
+use crate::common::sweep_rows::sweep_is_single_solves;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, Case, Contact, Input, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity,

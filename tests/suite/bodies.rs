@@ -2,11 +2,9 @@
 //! world axes): the one-body cases are its special case, bit for bit in
 //! `exact` precision; momentum, energy and symmetry invariants on random pairs.
 
-mod common;
-
-use common::Rng;
-use common::accuracy::random_inputs;
-use common::reference::ulp_of;
+use crate::common::Rng;
+use crate::common::accuracy::random_inputs;
+use crate::common::reference::ulp_of;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, BodiesOutcome, ImpactError, Lamina, Law, Outputs, PlanarContact, PlanarImpact,

@@ -21,13 +21,11 @@
 //!   `cargo test --release --test bodies_reference -- --nocapture` prints the
 //!   largest error of each output; `-- --ignored` runs the larger survey.
 
-mod common;
-
-use common::Rng;
-use common::bodies_reference::{
+use crate::common::Rng;
+use crate::common::bodies_reference::{
     self as exact, Answer, Scene, is_correctly_rounded, is_correctly_rounded_sqrt, sqrt_approx,
 };
-use common::reference::{self as one, Q, q, to_f64, ulp_of};
+use crate::common::reference::{self as one, Q, q, to_f64, ulp_of};
 use num_traits::{One, Signed, Zero};
 use restitution::{
     BodiesImpact, BodiesOutcome, ImpactError, Lamina, Law, Outputs, PlanarContact, Precision, solve,
@@ -1058,7 +1056,7 @@ fn the_reference_reproduces_the_one_body_reference() {
     let frames = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
     let (mut answered, mut refused) = (0, 0);
     for i in 0..300 * SIZE {
-        let inp = common::accuracy::random_inputs(&mut rng);
+        let inp = crate::common::accuracy::random_inputs(&mut rng);
         let law = random_law(&mut rng);
         let [c, s] = frames[i % 4];
         let t = [-s, c];

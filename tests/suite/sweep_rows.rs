@@ -4,10 +4,8 @@
 //! invalid. (The adversarial sets at every switch are swept too, in
 //! `tests/decisions.rs`.)
 
-mod common;
-
-use common::Rng;
-use common::sweep_rows::sweep_is_single_solves;
+use crate::common::Rng;
+use crate::common::sweep_rows::sweep_is_single_solves;
 use restitution::{Contact, Input, Law, PlanarImpact, PlanarVelocity};
 
 fn lamina(rng: &mut Rng, n: usize) -> PlanarImpact {

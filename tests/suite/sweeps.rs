@@ -1,12 +1,10 @@
 //! `POST /v1/sweeps` over loopback: every format, both combine modes, per-point
 //! errors, limits, streaming past the buffered limit, and the paper's figures.
 
-mod common;
-
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-use common::server::{TestApp, spawn_app};
+use crate::common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
 use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
@@ -691,7 +689,7 @@ async fn figure_4_torsional_branches_have_slopes_minus_ez_and_one_minus_ez() {
 async fn a_planar_sweep_takes_body_inputs_as_axes_and_body_outputs_as_columns() {
     use restitution::{BodiesImpact, Lamina, Law, Outputs, PlanarContact, Precision, solve};
     let app = spawn_app(ServiceConfig::default()).await;
-    let cars = common::examples::cars();
+    let cars = crate::common::examples::cars();
     let body = json!({
         "case": "planar",
         "base": cars,
@@ -1062,7 +1060,7 @@ fn mixed_sweep(count: u64) -> Value {
 /// the whole exactly.
 #[tokio::test]
 async fn a_reduction_equals_the_reduction_of_the_full_rows() {
-    use common::reference::{Q, q, to_f64};
+    use crate::common::reference::{Q, q, to_f64};
     let app = spawn_app(ServiceConfig::default()).await;
     let sweep = mixed_sweep(20);
     let table = json_table(&app, &sweep).await;

@@ -1,12 +1,11 @@
 //! The real server on 127.0.0.1:0, called over HTTP with reqwest.
 
 use reqwest::StatusCode;
-mod common;
 
-use common::plain::oblique::{self, TangentialLaw};
-use common::plain::tangential;
-use common::plain::torsional::{self, TorsionalImpact};
-use common::server::spawn_app;
+use crate::common::plain::oblique::{self, TangentialLaw};
+use crate::common::plain::tangential;
+use crate::common::plain::torsional::{self, TorsionalImpact};
+use crate::common::server::spawn_app;
 use restitution::http::{ServiceConfig, openapi_json};
 use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
 use serde_json::{Value, json};
@@ -769,7 +768,7 @@ async fn documented_examples_are_the_servers_real_answers() {
 #[tokio::test]
 async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_oblique_one() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let cars = common::examples::cars();
+    let cars = crate::common::examples::cars();
     let (status, _, body) = app.post("/v1/impacts/planar", &cars).await;
     assert_eq!(status, StatusCode::OK, "{body}");
     let bodies = body["bodies"].as_array().unwrap();
@@ -824,7 +823,7 @@ async fn the_planar_contact_endpoint_answers_two_bodies_and_reduces_to_the_obliq
 #[tokio::test]
 async fn the_planar_examples_answer_what_the_examples_readme_says() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let read = common::examples::example;
+    let read = crate::common::examples::example;
     let (status, _, cars) = app
         .post("/v1/impacts/planar", &read("planar_car_to_car.json"))
         .await;
@@ -873,7 +872,7 @@ async fn the_planar_examples_answer_what_the_examples_readme_says() {
 #[tokio::test]
 async fn the_spatial_contact_endpoint_answers_the_examples_and_refuses_at_the_pointer() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let read = common::examples::example;
+    let read = crate::common::examples::example;
     let (status, _, topspin) = app
         .post("/v1/impacts/spatial", &read("spatial_tennis_topspin.json"))
         .await;

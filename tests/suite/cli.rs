@@ -1,12 +1,10 @@
 //! The binary's offline commands: `restitution solve` answers as the
 //! endpoints do, `restitution sweep` shards tile the whole sweep.
 
-mod common;
-
 use std::io::Write;
 use std::process::{Command, Stdio};
 
-use common::server::spawn_app;
+use crate::common::server::spawn_app;
 use restitution::http::ServiceConfig;
 use serde_json::{Value, json};
 

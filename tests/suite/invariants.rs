@@ -4,12 +4,11 @@
 //! nalgebra 3×3 solve.
 
 use proptest::prelude::*;
-mod common;
 
-use common::linear::{TangentialClosure, solve_momentum};
-use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
-use common::plain::tangential;
-use common::plain::torsional::{self, TorsionalImpact};
+use crate::common::linear::{TangentialClosure, solve_momentum};
+use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use crate::common::plain::tangential;
+use crate::common::plain::torsional::{self, TorsionalImpact};
 use restitution::{Body, Contact, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
 
 fn scene_strategy() -> impl Strategy<Value = PlanarScene> {

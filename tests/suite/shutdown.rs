@@ -2,9 +2,7 @@
 //! flight when SIGTERM arrives all complete, new connections are refused, and
 //! the process exits 0 within its grace period.
 
-mod common;
-
-use common::process::{connect, free_port};
+use crate::common::process::{connect, free_port};
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Command, Stdio};

@@ -17,10 +17,8 @@
 //! (0.3°, 0.003, 5 rad/s) and, since the incidence angle itself scatters and
 //! spin is measured, gets 10× that.
 
-mod common;
-
-use common::rotation::Rotation;
-use common::validation::{self, Dataset, Deviation, Point, Quantity};
+use crate::common::rotation::Rotation;
+use crate::common::validation::{self, Dataset, Deviation, Point, Quantity};
 use restitution::{Outputs, PlanarOutcome, PlanarVelocity, Precision, SpatialOutcome, solve};
 
 fn digitization_scatter() -> f64 {
@@ -289,7 +287,7 @@ fn shared_outputs(
     rotation: Option<&Rotation>,
     k: Scales,
 ) -> Vec<(&'static str, f64, f64, f64)> {
-    let back = |v: [f64; 3]| rotation.map_or(v, |r| common::rotation::rotate_back(r, v));
+    let back = |v: [f64; 3]| rotation.map_or(v, |r| crate::common::rotation::rotate_back(r, v));
     let body = &s.bodies[0];
     let (pe, se) = (p.energy.expect("energies"), s.energy.expect("energies"));
     let mut rows = Vec::new();
@@ -452,7 +450,7 @@ fn kharaz_in_a_rotated_scene_is_the_planar_answer_to_a_few_ulps() {
         [0.5, 0.5, -0.6, -0.1],
     ];
     for (et, q) in kharaz_variants(&d).into_iter().zip(quaternions) {
-        let r = common::rotation::from_quaternion(q);
+        let r = crate::common::rotation::from_quaternion(q);
         for &x in &xs {
             let v = d.velocity(drive, x);
             let p = solve(&d.planar(v, et), Outputs::ALL, Precision::Exact).expect("a planar answer");

@@ -27,11 +27,9 @@
 //! counts and the largest error of each output; `-- --ignored` runs the
 //! larger survey behind the bound.
 
-mod common;
-
-use common::Rng;
-use common::reference::{Q, q, to_f64, ulp_of};
-use common::spatial_reference::{
+use crate::common::Rng;
+use crate::common::reference::{Q, q, to_f64, ulp_of};
+use crate::common::spatial_reference::{
     self as reference, Answer, Check, Expect, R, Reference, Scene, V3, add, cross, dot, r, scale, sub,
 };
 use rayon::prelude::*;
@@ -198,11 +196,14 @@ fn dyadic_twist(rng: &mut Rng) -> Option<Twist> {
 }
 
 /// `R diag(I₁, I₂, I₃) Rᵀ` from a random rotation, rounded to f64 (the
-/// rounded tensor is the input).
+/// rounded tensor is the input). The moments are a rigid body's: from the
+/// second moments `m k²` about the body's axes, `I₁ = m (k₂² + k₃²)` and so on,
+/// so each is at most the sum of the other two.
 fn rotated_tensor(rng: &mut Rng, mass: f64, length: f64) -> [f64; 6] {
-    let r = common::rotation::uniform(|| rng.range(-1.0, 1.0));
+    let r = crate::common::rotation::uniform(|| rng.range(-1.0, 1.0));
     let k = [0, 1, 2].map(|_| length * rng.log_uniform(-1.0, 0.5));
-    let d = k.map(|k| mass * k * k);
+    let s = k.map(|k| mass * k * k);
+    let d = [s[1] + s[2], s[0] + s[2], s[0] + s[1]];
     let t = |i: usize, j: usize| (0..3).map(|c| r[i][c] * d[c] * r[j][c]).sum::<f64>();
     [t(0, 0), t(1, 1), t(2, 2), t(0, 1), t(0, 2), t(1, 2)]
 }
@@ -331,24 +332,31 @@ fn scaled_scene(rng: &mut Rng) -> SpatialImpact {
     impact
 }
 
-/// A dyadic symmetric tensor: diagonal 2…4, off-diagonal within ±1
-/// (diagonally dominant, so positive definite), sometimes diagonal.
+/// A dyadic symmetric tensor: diagonal 4…5, off-diagonal within ±1/2
+/// (diagonally dominant, so positive definite), sometimes diagonal. Every
+/// eigenvalue lies in 3…6 (Gershgorin), so each is at most the sum of the
+/// other two: a rigid body's.
 fn dyadic_tensor(rng: &mut Rng) -> [f64; 6] {
-    let off = |rng: &mut Rng| if rng.chance(0.3) { 0.0 } else { dy(rng, -4, 4, 4.0) };
+    let off = |rng: &mut Rng| if rng.chance(0.3) { 0.0 } else { dy(rng, -2, 2, 4.0) };
     [
-        dy(rng, 8, 16, 4.0),
-        dy(rng, 8, 16, 4.0),
-        dy(rng, 8, 16, 4.0),
+        dy(rng, 16, 20, 4.0),
+        dy(rng, 16, 20, 4.0),
+        dy(rng, 16, 20, 4.0),
         off(rng),
         off(rng),
         off(rng),
     ]
 }
 
-/// `R diag(2^a, 2^b, 2^c) Rᵀ` with `R` a signed permutation, sometimes
-/// followed by a 45° turn in a coordinate plane: dyadic, and so is its inverse.
+/// `R diag(2^a, 2^a, 2^b) Rᵀ` (the odd moment on any axis, `b ≤ a + 1` so
+/// that each moment is at most the sum of the other two, as a rigid body's)
+/// with `R` a signed permutation, sometimes followed by a 45° turn in a
+/// coordinate plane: dyadic, and so is its inverse.
 fn pow2_tensor(rng: &mut Rng) -> [f64; 6] {
-    let d = [0, 1, 2].map(|_| pow2(rng, -2, 2));
+    let pair = pow2(rng, -2, 2);
+    let odd = pair * pow2(rng, -2, 1);
+    let mut d = [pair; 3];
+    d[(rng.next_u64() % 3) as usize] = odd;
     let mut t = [d[0], d[1], d[2], 0.0, 0.0, 0.0];
     if rng.chance(0.7) {
         // The plane (i, j) and the slot of its off-diagonal entry.

@@ -16,11 +16,9 @@
 //! f at and one ulp from μ_c and the bilinear switch, and results that are
 //! exactly zero. `report_*` (ignored) runs a larger grid and prints the tables.
 
-mod common;
-
-use common::Rng;
-use common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, refusal_kind};
-use common::reference::{self as reference, Outcome, Q, Refusal, q};
+use crate::common::Rng;
+use crate::common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, refusal_kind};
+use crate::common::reference::{self as reference, Outcome, Q, Refusal, q};
 use num_traits::{Signed, Zero};
 use restitution::impact::{Arithmetic, Stage, solve_in};
 use restitution::{

@@ -1,10 +1,8 @@
 //! The paper's own numbers and printed special cases, derived and checked.
 
-mod common;
-
-use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
-use common::plain::tangential;
-use common::plain::torsional::{self, TorsionalImpact, TorsionalRegime};
+use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use crate::common::plain::tangential;
+use crate::common::plain::torsional::{self, TorsionalImpact, TorsionalRegime};
 use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Regime};
 
 /// A uniform disc of radius ρ: k² = ρ²/2, so λ = ρ²/k² = 2.

@@ -2,9 +2,7 @@
 //! per request in `tracing_subscriber::fmt`'s format, filtered by
 //! `RESTITUTION_LOG`, every line written out before the process exits.
 
-mod common;
-
-use common::process::{connect, free_port};
+use crate::common::process::{connect, free_port};
 use std::io::{Read, Write};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};

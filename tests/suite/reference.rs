@@ -9,15 +9,13 @@
 //! each times the conditioning `κ_D = (k² + d_c² + |d_c μ d_d|) / |D k²|` of the
 //! denominator `D`. Where no cancellation occurs the scale is the value itself.
 
-mod common;
-
-use common::Rng;
-use common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, random_inputs, refusal_kind};
-use common::reference::{self as exact, Outcome, Refusal, q, ulps};
+use crate::common::Rng;
+use crate::common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, random_inputs, refusal_kind};
+use crate::common::reference::{self as exact, Outcome, Refusal, q, ulps};
 use num_traits::Signed;
 
-use common::plain::oblique::{self, KineticRestitution, TangentialLaw};
-use common::plain::tangential;
+use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
+use crate::common::plain::tangential;
 use restitution::{Contact, ImpactError, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
 
 /// Runs one case over `n` random scenes; `law` gives the fast and exact answers.
@@ -144,7 +142,7 @@ fn kinetic_restitution_matches_the_exact_reference() {
 fn frictionless_normal_impact_matches_the_exact_reference() {
     run_case("frictionless", 5, 2000, |rng, inp, _scene| {
         let e = random_e(rng);
-        let impact = common::plain::normal::NormalImpact {
+        let impact = crate::common::plain::normal::NormalImpact {
             mass: inp.m,
             inertia: Some(inp.inertia),
             contact: Some(Contact {
@@ -158,7 +156,7 @@ fn frictionless_normal_impact_matches_the_exact_reference() {
             },
             restitution: e,
         };
-        let fast = common::plain::normal::solve(&impact, Outputs::ALL);
+        let fast = crate::common::plain::normal::solve(&impact, Outputs::ALL);
         (fast, exact::frictionless(&inp.exact(), e))
     });
 }
@@ -190,7 +188,7 @@ fn torsional_matches_the_exact_reference() {
             torsional_friction: mu_z,
             pitch_radius: rho,
         };
-        let Ok(fast) = common::plain::torsional::solve(&impact, true) else {
+        let Ok(fast) = crate::common::plain::torsional::solve(&impact, true) else {
             continue;
         };
         let (spin_x, moment_x, regime, switch_x, loss_x) =
@@ -229,7 +227,7 @@ fn point_mass_matches_the_exact_reference() {
             speed * rng.range(-2.0, 2.0),
             random_e(&mut rng),
         );
-        let impact = common::plain::normal::NormalImpact {
+        let impact = crate::common::plain::normal::NormalImpact {
             mass: m,
             inertia: None,
             contact: None,
@@ -240,7 +238,7 @@ fn point_mass_matches_the_exact_reference() {
             },
             restitution: e,
         };
-        let fast = common::plain::normal::solve(&impact, Outputs::ALL).unwrap();
+        let fast = crate::common::plain::normal::solve(&impact, Outputs::ALL).unwrap();
         let (qm, qvn, qvt, qe) = (q(m), q(vn), q(vt), q(e));
         let one = q(1.0);
         let final_vn = -(&qe * &qvn);

@@ -2,12 +2,10 @@
 //! exposition format and its counters move with traffic; readiness turns 503
 //! while the service drains for shutdown and while it sheds load.
 
-mod common;
-
 use std::collections::BTreeMap;
 use std::time::Duration;
 
-use common::server::spawn_app;
+use crate::common::server::spawn_app;
 use reqwest::StatusCode;
 use restitution::http::{AppState, ServiceConfig, serve_app_until};
 use serde_json::json;
@@ -70,7 +68,7 @@ fn parse(text: &str) -> BTreeMap<String, f64> {
     samples
 }
 
-async fn metrics(app: &common::server::TestApp) -> BTreeMap<String, f64> {
+async fn metrics(app: &crate::common::server::TestApp) -> BTreeMap<String, f64> {
     let response = app
         .client
         .get(format!("{}/metrics", app.base))

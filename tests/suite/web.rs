@@ -4,11 +4,9 @@
 //! API key and absent from the OpenAPI document, and every preset a request
 //! the service answers.
 
-mod common;
-
 use std::collections::BTreeSet;
 
-use common::server::spawn_app;
+use crate::common::server::spawn_app;
 use reqwest::StatusCode;
 use restitution::http::web::CONTENT_SECURITY_POLICY;
 use restitution::http::{ServiceConfig, openapi};
@@ -18,7 +16,7 @@ use serde_json::Value;
 /// identifier that is never fetched.
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
-async fn get(app: &common::server::TestApp, path: &str) -> reqwest::Response {
+async fn get(app: &crate::common::server::TestApp, path: &str) -> reqwest::Response {
     app.client
         .get(format!("{}{path}", app.base))
         .send()

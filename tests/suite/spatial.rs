@@ -6,9 +6,7 @@
 // Component loops over x, y, z read several vectors at once.
 #![allow(clippy::needless_range_loop)]
 
-mod common;
-
-use common::{Rng, rotation};
+use crate::common::{Rng, rotation};
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
     BodiesImpact, ImpactError, Lamina, Law, Outputs, PlanarContact, Precision, Regime, RigidBody,

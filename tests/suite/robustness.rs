@@ -3,11 +3,9 @@
 //! Every wait is bounded by a timeout so a hang fails the test instead of
 //! stalling it.
 
-mod common;
-
 use std::time::Duration;
 
-use common::server::{TestApp, spawn_app};
+use crate::common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
 use serde_json::{Value, json};
@@ -25,11 +23,11 @@ fn normal_request() -> Value {
 async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx() {
     let app = spawn_app(ServiceConfig::default()).await;
     let with = |pointer: &str, value: Value| {
-        let mut r = common::examples::cars();
+        let mut r = crate::common::examples::cars();
         *r.pointer_mut(pointer).unwrap() = value;
         r
     };
-    let lamina = common::examples::cars()["bodies"][0].clone();
+    let lamina = crate::common::examples::cars()["bodies"][0].clone();
     let cases: Vec<(&str, Value, &str)> = vec![
         (
             "a third body",
@@ -96,7 +94,7 @@ async fn hostile_planar_contacts_get_a_422_naming_their_member_and_never_a_5xx()
         r#"{{"bodies": [{}], "contact": {{"point": {{"x": 0, "y": 0}}, "normal": {{"x": 1, "y": 0}}}}, "restitution": 0.5}}"#,
         vec![serde_json::to_string(&lamina).unwrap(); 5000].join(",")
     );
-    let beyond = serde_json::to_string(&common::examples::cars())
+    let beyond = serde_json::to_string(&crate::common::examples::cars())
         .unwrap()
         .replace("1500.0", "1e400");
     for body in [many, beyond] {
@@ -124,7 +122,7 @@ async fn a_trillion_point_planar_sweep_is_refused_and_the_server_keeps_serving()
     let million = json!({"start": 1.0, "stop": 30.0, "count": 1_000_000});
     let body = json!({
         "case": "planar",
-        "base": common::examples::cars(),
+        "base": crate::common::examples::cars(),
         "axes": [
             {"path": "/bodies/1/velocity/y", "linspace": million},
             {"path": "/contact/normal/y", "linspace": million}

@@ -1,10 +1,8 @@
 //! `POST /v1/fits/tangential` over loopback: coefficients recovered from
 //! observations the solver generates, in any order; refusals name the member.
 
-mod common;
-
-use common::plain::tangential;
-use common::server::spawn_app;
+use crate::common::plain::tangential;
+use crate::common::server::spawn_app;
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
 use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
@@ -118,7 +116,7 @@ async fn torsional_coefficients_are_recovered_over_http() {
                 torsional_friction: 0.3,
                 pitch_radius: 0.005,
             };
-            let o = common::plain::torsional::solve(&impact, false).unwrap();
+            let o = crate::common::plain::torsional::solve(&impact, false).unwrap();
             json!({
                 "body": {"mass": 0.1, "normal_inertia": 3.6e-5}, "pitch_radius": 0.005,
                 "initial": {"normal": -3.0, "spin": spin},
@@ -150,7 +148,7 @@ async fn torsional_coefficients_are_recovered_over_http() {
 #[tokio::test]
 async fn a_planar_reconstruction_recovers_e_mu_and_the_normal() {
     let app = spawn_app(ServiceConfig::default()).await;
-    let example = common::examples::cars();
+    let example = crate::common::examples::cars();
     let cars = example["bodies"].clone();
     let contact = example["contact"].clone();
     let measured = |outcome: &Value| -> Value {

@@ -1,0 +1,29 @@
+//! The integration tests, in one binary: the helpers in `tests/common`
+//! compile once and the suite links once. Three tests keep binaries of their
+//! own: `allocation.rs` (a counting global allocator), `logging.rs` (a
+//! captured log is thread-local: alone in its process) and `kernels.rs` (CI
+//! runs its executable again against the release binary).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod access_log;
+mod bodies;
+mod bodies_reference;
+mod cli;
+mod decisions;
+mod fits;
+mod http;
+mod invariants;
+mod paper;
+mod precision;
+mod reference;
+mod robustness;
+mod shutdown;
+mod spatial;
+mod spatial_reference;
+mod sweep_rows;
+mod sweeps;
+mod telemetry;
+mod validation;
+mod web;
