@@ -5,7 +5,7 @@
 use crate::quantity::{Output, Value};
 use crate::scene::{ContactVelocity, PlanarVelocity};
 
-/// An outcome type's outputs, declared once by [`answers!`]: the outputs it
+/// An outcome type's outputs, declared once by `answers!`: the outputs it
 /// answers in response order, and how each is read off an outcome. Every
 /// list of a case's outputs (its response, its sweep columns, the model's
 /// names for the outputs it writes) is taken from here.

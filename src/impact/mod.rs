@@ -143,7 +143,7 @@ pub enum Stage {
 }
 
 /// A physical case: an impact type whose values carry their law. What it
-/// reads is declared once, by [`reads!`] in its `impl Case` (its inputs in
+/// reads is declared once, by `reads!` in its `impl Case` (its inputs in
 /// request order, each with its slot); what it answers is declared once,
 /// beside its outcome type ([`Answers`], `src/outcome.rs`).
 pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {

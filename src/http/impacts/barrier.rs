@@ -137,7 +137,7 @@ impl TryFrom<&NormalRequest> for PlanarImpact {
 impl TryFrom<&ObliqueRequest> for PlanarImpact {
     type Error = ApiError;
 
-    /// Exactly one law, read by the one wire parser ([`law_of`]): `restitution`
+    /// Exactly one law, read by the one wire parser (`law_of`): `restitution`
     /// with `friction` or `impulse_ratio`, or `kinetic_restitution` alone.
     fn try_from(req: &ObliqueRequest) -> Result<Self, ApiError> {
         let law = law_of(

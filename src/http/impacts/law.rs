@@ -1,7 +1,7 @@
 //! The wire form of a contact law, one for every endpoint and sweep: the
 //! members `restitution`, `kinetic_restitution`, `friction`,
 //! `impulse_ratio` and `tangential_restitution`, read into a [`Law`] by one
-//! parser with one set of messages ([`law_of`]).
+//! parser with one set of messages (`law_of`).
 
 use axum::http::StatusCode;
 use serde::Deserialize;
