@@ -8,7 +8,7 @@
 //! The torsional case (spin swept, every output) beside a bare loop over
 //! `restitution::solve`: the cost of the sweep's per-point checks.
 //!
-//! `cargo bench --bench sweep` (figures in docs/performance.md);
+//! `cargo bench --bench sweep` (figures in docs/performance.md, their history in docs/performance-log.md);
 //! `RESTITUTION_KERNELS=portable cargo bench --bench sweep` runs the portable
 //! copy of the solver instead of the x86-64-v3 one (`restitution::kernels`).
 

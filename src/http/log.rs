@@ -39,7 +39,7 @@ const QUEUE: usize = 4096;
 /// the thread costs the request path too, on a machine whose cores the
 /// workers keep busy (a context switch, a worker pre-empted): 10 ms took
 /// fewer context switches per request than 1 ms in every round measured,
-/// and about 7 % less CPU per request on average (docs/performance.md,
+/// and about 7 % less CPU per request on average (docs/performance-log.md,
 /// "Where issue 18 ends").
 const LINGER: Duration = Duration::from_millis(10);
 
