@@ -471,7 +471,7 @@ mod tests {
                     certified += 1;
                     assert_eq!(
                         r,
-                        crate::arith::field::round_rational(&exact),
+                        crate::arith::fraction::round_rational(&exact),
                         "case {case} step {step}"
                     );
                 }
@@ -531,7 +531,7 @@ mod tests {
             .div(&Compensated::exact(y));
         let exact = of(x) * of(1.1) / of(y);
         if let Ok(r) = q.round() {
-            assert_eq!(r, crate::arith::field::round_rational(&exact));
+            assert_eq!(r, crate::arith::fraction::round_rational(&exact));
         }
         holds(&q, &exact, "subnormal quotient");
         // A divisor near the top of the range has a subnormal reciprocal.

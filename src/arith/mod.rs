@@ -26,10 +26,12 @@ mod bounded;
 mod compensated;
 mod field;
 mod filtered;
+mod fraction;
 mod surd;
 
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
-pub(crate) use field::{Field, Fraction, OutOfRange, Undecided};
+pub(crate) use field::{Field, OutOfRange, Undecided};
 pub(crate) use filtered::{Filtered, Uncertain};
+pub(crate) use fraction::Fraction;
 pub(crate) use surd::{Radical, Surd};

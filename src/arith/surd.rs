@@ -26,7 +26,8 @@ use std::rc::Rc;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
-use super::field::{Field, Fraction};
+use super::field::Field;
+use super::fraction::Fraction;
 
 /// Parts are brought to lowest terms past this many bits: without it the
 /// numerators and denominators of a spatial answer (a tensor's inverse, the

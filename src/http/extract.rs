@@ -95,6 +95,17 @@ pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
                 }
                 schema_mismatch("", error.path(), inner)
             }
+            // serde_json reports a value of the wrong kind where an enum is
+            // read (`"precision": 12.5`) as "expected value", a syntax error:
+            // well-formed JSON is read again from its tree, which says what
+            // the member takes, at its pointer.
+            serde_json::error::Category::Syntax => match serde_json::from_slice::<serde_json::Value>(bytes) {
+                Ok(tree) => match parse_value::<T>(tree, "") {
+                    Ok(_) => malformed(inner),
+                    Err(problem) => problem,
+                },
+                Err(_) => malformed(inner),
+            },
             _ => malformed(inner),
         }
     })

@@ -20,6 +20,7 @@ pub(crate) mod contact;
 pub(crate) mod planar;
 pub(crate) mod spatial;
 pub(crate) mod torsional;
+mod vector;
 
 use std::cmp::Ordering;
 

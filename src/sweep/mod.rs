@@ -5,10 +5,11 @@
 //! `Param`), and how to evaluate a point into the chosen output columns.
 //! [`CaseSweep`] is the one for every impact case: built once per sweep, after
 //! the axes are known, it validates and prepares every input no axis touches
-//! (through [`Solver`]) and skips every output no column asks for. The engine
+//! (through [`crate::impact::Solver`]) and skips every output no column asks for. The engine
 //! walks the grid with an odometer, resets only the inputs whose axis moved,
 //! and reuses its buffers: no allocation per point.
 
+mod case;
 mod grid;
 pub mod reduce;
 
@@ -17,13 +18,11 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use std::sync::mpsc;
 
+pub use case::{CaseSweep, CaseSweepError};
 use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points, shard};
 
-use crate::error::{ImpactError, Input, Output};
-use crate::impact::{Arithmetic, Case, Precision, Solver};
-use crate::outcome::{Answers, Outputs};
-use crate::quantity::Value;
+use crate::error::ImpactError;
 
 /// One output value of a point: a number or a name (a regime).
 pub type Cell = crate::quantity::Value;
@@ -275,105 +274,6 @@ impl<C: SweepCase> Sweep<C> {
     }
 }
 
-/// An impact case over a grid: the base impact's [`Solver`] and the chosen
-/// output columns.
-#[derive(Debug, Clone)]
-pub struct CaseSweep<C: Case> {
-    solver: Solver<C>,
-    columns: Vec<Output>,
-    /// How each column is read off an outcome (the case's declaration, looked up once).
-    readers: Vec<fn(&C::Outcome) -> Value>,
-}
-
-/// Why a sweep of a case cannot be prepared.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-pub enum CaseSweepError {
-    /// An axis sets an input the base impact does not read.
-    #[error("{} is not an input of this impact", .0.path())]
-    NotRead(Input),
-    /// A column names an output the case does not answer.
-    #[error("{} is not an output of this case", .0.path())]
-    NotAnswered(Output),
-}
-
-impl<C: Case> CaseSweep<C> {
-    /// Prepares `base` for a sweep in which axes set `swept`, computing only
-    /// what `columns` need. Refuses the first swept input the base impact
-    /// does not read, and the first column the case does not answer.
-    pub fn new(
-        base: &C,
-        swept: &[Input],
-        columns: Vec<Output>,
-        precision: Precision,
-    ) -> Result<Self, CaseSweepError> {
-        CaseSweep::in_arithmetic(base, swept, columns, precision.into())
-    }
-
-    /// The same in one `arithmetic` ([`Solver::in_arithmetic`]; a measurement hook).
-    #[doc(hidden)]
-    pub fn in_arithmetic(
-        base: &C,
-        swept: &[Input],
-        columns: Vec<Output>,
-        arithmetic: Arithmetic,
-    ) -> Result<Self, CaseSweepError> {
-        if let Some(&unread) = swept.iter().find(|&&i| base.input(i).is_none()) {
-            return Err(CaseSweepError::NotRead(unread));
-        }
-        let readers = columns
-            .iter()
-            .map(|&c| C::Outcome::reader(c).ok_or(CaseSweepError::NotAnswered(c)))
-            .collect::<Result<_, _>>()?;
-        Ok(CaseSweep {
-            solver: Solver::in_arithmetic(base, swept, Outputs::needed_by(&columns), arithmetic),
-            columns,
-            readers,
-        })
-    }
-
-    /// The optional outputs the columns need.
-    pub fn outputs(&self) -> Outputs {
-        self.solver.outputs()
-    }
-
-    /// The columns.
-    pub fn columns(&self) -> &[Output] {
-        &self.columns
-    }
-
-    /// Solves one point with every output the columns need.
-    pub fn solve(&self, point: &C) -> Result<C::Outcome, ImpactError> {
-        self.solver.solve(point)
-    }
-}
-
-impl<C: Case> SweepCase for CaseSweep<C> {
-    type Point = C;
-    type Param = Input;
-
-    /// Sets an input the point reads ([`CaseSweep::new`] refuses axes of any other).
-    #[inline]
-    fn set(point: &mut C, input: Input, value: f64) {
-        if let Some(slot) = point.input_mut(input) {
-            *slot = value;
-        }
-    }
-
-    fn columns(&self) -> usize {
-        self.columns.len()
-    }
-
-    #[inline(always)]
-    fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
-        let mut outcome = C::Outcome::default();
-        self.solver.solve_into(point, &mut outcome)?;
-        for (cell, read) in cells.iter_mut().zip(&self.readers) {
-            *cell = read(&outcome);
-        }
-        Ok(())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -529,167 +429,5 @@ mod tests {
             }
         ));
         assert_eq!(calls, 2);
-    }
-
-    use crate::impact::{Law, PlanarImpact, TorsionalImpact, solve};
-    use crate::scene::{Contact, PlanarVelocity};
-
-    fn maw(friction: f64) -> PlanarImpact {
-        PlanarImpact::rigid(
-            1.0,
-            0.5 * 0.05 * 0.05,
-            Contact {
-                tangential_offset: 0.0,
-                normal_offset: 0.05,
-            },
-            PlanarVelocity {
-                normal: -1.0,
-                tangential: 2.0,
-                angular: 0.0,
-            },
-            Law::TangentialRestitution {
-                restitution: 0.93,
-                friction,
-                tangential_restitution: 0.34,
-            },
-        )
-    }
-
-    #[test]
-    fn a_fixed_scene_gives_the_same_answers_as_one_built_per_point() {
-        let columns = vec![Output::FinalTangentialContactVelocity, Output::EnergyLoss];
-        let fixed =
-            CaseSweep::new(&maw(0.123), &[Input::Friction], columns.clone(), Precision::Fast).unwrap();
-        // Sweeping a velocity too: the scene and the law built per point.
-        let per_point = CaseSweep::new(
-            &maw(0.123),
-            &[Input::TangentialVelocity, Input::Friction],
-            columns,
-            Precision::Fast,
-        )
-        .unwrap();
-        assert!(fixed.outputs().energy && !fixed.outputs().critical_impulse_ratio);
-        for f in [0.0, 0.05, 0.123, 0.5] {
-            let p = maw(f);
-            assert_eq!(fixed.solve(&p), per_point.solve(&p));
-            assert_eq!(
-                fixed.solve(&p).unwrap(),
-                solve(&p, fixed.outputs(), Precision::Fast).unwrap()
-            );
-        }
-    }
-
-    #[test]
-    fn a_fixed_law_gives_the_same_answers_and_refusals_as_one_validated_per_point() {
-        let columns = vec![Output::FinalTangentialContactVelocity, Output::Regime];
-        // The law is valid in one base and out of range (e_t > 1) in the other.
-        for et in [0.34, 1.5] {
-            let mut base = maw(0.123);
-            base.law = Law::TangentialRestitution {
-                restitution: 0.93,
-                friction: 0.123,
-                tangential_restitution: et,
-            };
-            let fixed_law = CaseSweep::new(
-                &base,
-                &[Input::TangentialVelocity],
-                columns.clone(),
-                Precision::Fast,
-            )
-            .unwrap();
-            let per_point = CaseSweep::new(
-                &base,
-                &[Input::TangentialVelocity, Input::TangentialRestitution],
-                columns.clone(),
-                Precision::Fast,
-            )
-            .unwrap();
-            for vt in [-3.0, 0.0, 0.01, 2.0] {
-                let mut p = base;
-                p.velocity.tangential = vt;
-                let answer = fixed_law.solve(&p);
-                assert_eq!(answer, per_point.solve(&p));
-                assert_eq!(answer, solve(&p, fixed_law.outputs(), Precision::Fast));
-                assert_eq!(answer.is_ok(), et <= 1.0, "{answer:?}");
-            }
-        }
-    }
-
-    #[test]
-    fn an_axis_the_law_does_not_read_is_refused() {
-        let refused = CaseSweep::new(
-            &maw(0.1),
-            &[Input::ImpulseRatio],
-            vec![Output::Regime],
-            Precision::Fast,
-        );
-        assert_eq!(refused.err(), Some(CaseSweepError::NotRead(Input::ImpulseRatio)));
-    }
-
-    #[test]
-    fn invalid_points_fail_alone() {
-        let base = maw(0.123);
-        let case = CaseSweep::new(
-            &base,
-            &[Input::NormalVelocity],
-            vec![Output::Regime],
-            Precision::Fast,
-        )
-        .unwrap();
-        let axes = vec![Axis {
-            param: Input::NormalVelocity,
-            values: AxisValues::List(vec![-1.0, 0.5, -2.0]),
-        }];
-        let sweep = Sweep::new(case, base, axes, Combine::Product, 10).unwrap();
-        let mut outcomes = Vec::new();
-        sweep.for_each_in(0..3, |row| {
-            outcomes.push(row.outcome.map(|c| c.to_vec()).map_err(|e| e.title()))
-        });
-        assert_eq!(outcomes[0], Ok(vec![Cell::Text("sliding")]));
-        assert_eq!(outcomes[1], Err("Contact is not approaching"));
-        assert_eq!(outcomes[2], Ok(vec![Cell::Text("sliding")]));
-    }
-
-    /// Out-of-range torsional inputs, fixed or swept, are answered as single solves answer them.
-    #[test]
-    fn extreme_fixed_and_swept_inputs_escalate_as_single_solves_do() {
-        let base = TorsionalImpact {
-            mass: 0.6,
-            normal_inertia: 0.003456,
-            normal_velocity: -3.0,
-            spin: 0.0,
-            restitution: 0.7,
-            torsional_restitution: 0.2,
-            torsional_friction: 0.3,
-            pitch_radius: 0.01,
-        };
-        let spins = vec![20.0, 1e250, -3e-250, 0.0];
-        for b in [base, TorsionalImpact { mass: 1e-250, ..base }] {
-            let case = CaseSweep::new(&b, &[Input::Spin], vec![Output::FinalSpin], Precision::Fast).unwrap();
-            let axes = vec![Axis {
-                param: Input::Spin,
-                values: AxisValues::List(spins.clone()),
-            }];
-            let sweep = Sweep::new(case, b, axes, Combine::Product, u64::MAX).expect("a sweep");
-            let mut got = Vec::new();
-            sweep.for_each_in(0..sweep.points(), |row| match row.outcome {
-                Ok([Cell::Number(x)]) => got.push(*x),
-                other => panic!("{other:?}"),
-            });
-            for (spin, got) in spins.iter().zip(got) {
-                let one = solve(
-                    &TorsionalImpact { spin: *spin, ..b },
-                    Outputs::MINIMAL,
-                    Precision::Fast,
-                )
-                .expect("an answer");
-                assert_eq!(
-                    got.to_bits(),
-                    one.final_spin.to_bits(),
-                    "spin {spin}, mass {}",
-                    b.mass
-                );
-            }
-        }
     }
 }

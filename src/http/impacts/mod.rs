@@ -6,6 +6,7 @@
 
 pub mod barrier;
 pub mod bodies;
+pub mod inertia;
 pub mod law;
 pub mod spatial;
 pub mod torsional;

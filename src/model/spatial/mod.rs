@@ -1,0 +1,255 @@
+//! One point contact in space: body A against body B or a fixed barrier,
+//! with full inertia tensors, slip in any direction and an optional twist
+//! about the normal (section 4 generalised).
+//!
+//! Each body `b` has mass `m_b`, inertia tensor `I_b` about its mass centre
+//! (world axes), velocity `v_b`, angular velocity `ω_b` and `r_b = C − G_b`;
+//! the normal `n` (from B into A) is not normalised. The unknowns are the
+//! impulse `P` on A (`−P` on B) and the couple `κ n` about the normal
+//! (`κ = M/|n|`); the velocities they change are the relative contact-point
+//! velocity `u = Σ± (v_b + ω_b × r_b)` and the scaled relative spin
+//! `s̃ = (ω_A − ω_B)·n = |n| s`. Then
+//!
+//! ```text
+//! Δu = W P + w κ,   Δs̃ = wᵀ P + k κ,
+//! W = Σ_b (1/m_b + [r_b]×ᵀ I_b⁻¹ [r_b]×),  w = Σ_b (I_b⁻¹ n) × r_b,  k = Σ_b nᵀ I_b⁻¹ n,
+//! ```
+//!
+//! the symmetric positive definite 4×4 contact matrix `𝒲̃` (`J = |n|²/k`).
+//! With `ν = |n|²`, the normal part of a vector `x` is `(x·n)/ν n`, so every
+//! law but sliding is rational in the inputs:
+//!
+//! - kept tangential branch (stick, or `e_t` restitution): `Δu = q n/ν − (1 + e_t) u_t`,
+//!   `q = −(1 + e) u·n` (Eqs 1, 20);
+//! - sliding (and a prescribed ratio `μ`): `P = p̃ (n + c √(ν/|w_s|²) w_s)` with
+//!   `c = f` (or `μ`), `w_s = −u_t` (or the sticking impulse's `P_t` when
+//!   `u_t = 0`): one square root per answer, held exactly by [`crate::arith::Surd`];
+//! - twist restitution: `Δs̃ = −(1 + e_z) s̃` (Eq 28); twist sliding:
+//!   `κ = −e_z s̃/k + τ μ_z ρ_p (P·n)/ν` (Eqs 29–30 divided by `|n|`), `τ = −sgn s̃`
+//!   (or the sign of the restitution branch's couple when `s̃ = 0`).
+//!
+//! When both laws have two branches, the answer is the one combination in
+//! which each kept branch holds its cap and each sliding branch is taken only
+//! where its kept branch (with the same partner) fails; none or several:
+//! refused as not unique (conventions, rules 1–8).
+
+mod law;
+mod scene;
+
+use std::cmp::Ordering;
+
+use super::{Exact, Fail, abs, half, out, out_times_sqrt, sign};
+use crate::arith::{Field, Radical};
+use crate::error::{ImpactError, Input, Output};
+use crate::input::{Law, RigidBody, SpatialImpact, Twist};
+use crate::outcome::{
+    Outputs, PlanarEnergy, Regime, SPATIAL_BODY_OUTPUTS, SpatialBodyOutcome, SpatialContactVelocities,
+    SpatialContactVelocity, SpatialImpulse, SpatialOutcome, TorsionalRegime,
+};
+
+use self::law::*;
+use self::scene::*;
+use super::vector::*;
+
+/// The leading principal minors `I_xx`, `I_xx I_yy − I_xy²` and `det I` of a
+/// tensor `[xx, yy, zz, xy, xz, yz]`: it is positive definite when all three
+/// are positive (Sylvester's criterion).
+pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
+    let m = tensor.map(N::of);
+    let second = m[0].mul_add(&m[1], &m[3].mul(&m[3]).neg());
+    let (_, det) = adjugate(&m);
+    [m[0].clone(), second, det]
+}
+
+/// The relative normal contact velocity `u·n` (unnormalised), by the same
+/// operations as the scene: what validation decides the approach on.
+pub(crate) fn approach<N: Field>(impact: &SpatialImpact) -> N {
+    let c: V3<N> = vector(impact.contact.point);
+    let n = vector(impact.contact.normal);
+    // Only the velocities: no tensor inverse, which the decision does not need.
+    let velocity = |b: &RigidBody| {
+        let r = zip(&c, &vector(b.position), |c, g| c.sub(g));
+        point_velocity(&vector(b.velocity), &vector(b.angular_velocity), &r)
+    };
+    let mut u = velocity(&impact.a);
+    if let Some(b) = &impact.b {
+        u = zip(&u, &velocity(b), |x, y| x.sub(y));
+    }
+    dot(&u, &n)
+}
+
+fn three(o: &[Output], from: usize) -> [Output; 3] {
+    [o[from], o[from + 1], o[from + 2]]
+}
+
+/// A validated spatial contact in the field `N`: refused unless it
+/// approaches (`u·n < 0`, decided exactly in the exact fields).
+#[inline(always)]
+pub(crate) fn spatial<N: Radical>(
+    impact: &SpatialImpact,
+    outputs: Outputs,
+    outcome: &mut SpatialOutcome,
+) -> Exact<N, ()> {
+    let mut sc = Scene::<N>::new(impact);
+    if sign(&sc.un)? != Ordering::Less {
+        return Err(ImpactError::NotApproaching {
+            input: Input::VelocityA,
+            normal_contact_velocity: sc.un.approx() / sc.nu.approx().sqrt(),
+        }
+        .into());
+    }
+    let (t, z, found) = sc.choose()?;
+    let (regime, pointer) = match t {
+        Tangential::Kept => (sc.law.regimes.0, sc.law.pointers.0),
+        Tangential::Sliding => (sc.law.regimes.1, sc.law.pointers.1),
+    };
+    let no_impulse = || Fail::Refused(ImpactError::NoImpulse { input: pointer });
+    let s = found.ok_or_else(no_impulse)?;
+    if sign(&s.pn)? != Ordering::Greater {
+        return Err(no_impulse());
+    }
+    let one = N::of(1.0);
+    let e = N::of(sc.law.e);
+    // Δu = W P + w κ, Δs̃ = wᵀ P + k κ.
+    let du = axpy(&s.kappa, &sc.w, &sym_mul(&sc.w_matrix, &s.p));
+    let dspin = sc.k.mul_add(&s.kappa, &dot(&sc.w, &s.p));
+    let (final_ut, slip_sum) = match t {
+        Tangential::Kept => {
+            let et = N::of(sc.law.kept.unwrap_or(0.0));
+            (
+                map(&sc.ut, |x| et.mul(x).neg()),
+                map(&sc.ut, |x| one.sub(&et).mul(x)),
+            )
+        }
+        Tangential::Sliding => {
+            let dun = dot(&du, &sc.n).div(&sc.nu);
+            let dut = axpy(&dun.neg(), &sc.n, &du);
+            (
+                zip(&sc.ut, &dut, |x, y| x.add(y)),
+                zip(&sc.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
+            )
+        }
+    };
+    let (final_spin, spin_sum) = match (z, sc.twist) {
+        (Spin::Restitution, Some(tw)) => {
+            let ez = N::of(tw.restitution);
+            (ez.mul(&sc.s).neg(), one.sub(&ez).mul(&sc.s))
+        }
+        _ => (sc.s.add(&dspin), N::of(2.0).mul_add(&sc.s, &dspin)),
+    };
+    // work = P·(u + U) + κ (s̃ + S̃), with u + U = (1 − e)(u·n) n/ν + (u_t + U_t).
+    let normal_work = one.sub(&e).mul(&sc.un).mul(&s.pn).div(&sc.nu);
+    let work = s
+        .kappa
+        .mul_add(&spin_sum, &dot(&s.p, &slip_sum).add(&normal_work));
+    if sign(&work)? == Ordering::Greater {
+        return Err(ImpactError::EnergyCreated {
+            input: pointer,
+            energy_loss: -0.5 * work.approx(),
+        }
+        .into());
+    }
+    let mut bodies = [SpatialBodyOutcome::default(); 2];
+    let p2 = norm2(&s.p);
+    for (index, b) in sc.bodies.iter().enumerate() {
+        let names = &SPATIAL_BODY_OUTPUTS[index];
+        let signed = |x: N| if index == 0 { x } else { x.neg() };
+        let dv = map(&s.p, |x| signed(x.mul(&b.inv_m)));
+        let moment = axpy(&s.kappa, &sc.n, &cross(&b.r, &s.p));
+        let dw = map(&sym_mul(&b.inv_i, &moment), |x| signed(x.clone()));
+        bodies[index] = SpatialBodyOutcome {
+            velocity: Scene::<N>::vector_out(three(names, 0), &zip(&b.v, &dv, |x, y| x.add(y)))?,
+            angular_velocity: Scene::<N>::vector_out(three(names, 3), &zip(&b.w, &dw, |x, y| x.add(y)))?,
+            velocity_change: Scene::<N>::vector_out(three(names, 6), &dv)?,
+            delta_v: out_times_sqrt(names[9], &b.inv_m, &p2)?,
+            angular_velocity_change: Scene::<N>::vector_out(three(names, 10), &dw)?,
+        };
+    }
+    let contact_velocity = SpatialContactVelocities {
+        initial: SpatialContactVelocity {
+            normal: sc.along(Output::InitialNormalContactVelocity, &sc.un)?,
+            tangential: Scene::<N>::vector_out(
+                [
+                    Output::InitialTangentialContactVelocityX,
+                    Output::InitialTangentialContactVelocityY,
+                    Output::InitialTangentialContactVelocityZ,
+                ],
+                &sc.ut,
+            )?,
+            spin: sc.along(Output::InitialContactSpin, &sc.s)?,
+        },
+        r#final: SpatialContactVelocity {
+            normal: sc.along(Output::FinalNormalContactVelocity, &e.mul(&sc.un).neg())?,
+            tangential: Scene::<N>::vector_out(
+                [
+                    Output::FinalTangentialContactVelocityX,
+                    Output::FinalTangentialContactVelocityY,
+                    Output::FinalTangentialContactVelocityZ,
+                ],
+                &final_ut,
+            )?,
+            spin: sc.along(Output::FinalContactSpin, &final_spin)?,
+        },
+    };
+    let impulse = SpatialImpulse {
+        normal: sc.along(Output::NormalImpulse, &s.pn)?,
+        tangential: Scene::<N>::vector_out(
+            [
+                Output::TangentialImpulseX,
+                Output::TangentialImpulseY,
+                Output::TangentialImpulseZ,
+            ],
+            &s.pt,
+        )?,
+        torsional: out_times_sqrt(Output::TorsionalImpulse, &s.kappa, &sc.nu)?,
+        x: out(Output::ImpulseX, &s.p[0])?,
+        y: out(Output::ImpulseY, &s.p[1])?,
+        z: out(Output::ImpulseZ, &s.p[2])?,
+    };
+    let impulse_ratio = match t {
+        Tangential::Kept => sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0),
+        // |P_t| = c P_n exactly, unless there is no direction to slide in.
+        Tangential::Sliding if sign(&norm2(&s.pt))? == Ordering::Equal => 0.0,
+        Tangential::Sliding => out(Output::ImpulseRatio, &N::of(sc.law.c))?,
+    };
+    let critical_impulse_ratio = if outputs.critical_impulse_ratio || regime == Regime::Sticking {
+        let stick = sc.solve(Tangential::Kept, z, 0.0)?;
+        match stick {
+            Some(stick) => sc.ratio(&stick, Output::CriticalImpulseRatio)?,
+            None => None,
+        }
+    } else {
+        None
+    };
+    let energy = if outputs.energy {
+        let initial = sc.initial_energy();
+        let loss = half::<N>().mul(&work).neg();
+        let max_loss = sc.max_loss();
+        Some(PlanarEnergy {
+            initial: out(Output::InitialEnergy, &initial)?,
+            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?.max(0.0),
+            loss: out(Output::EnergyLoss, &loss)?,
+            max_loss: out(Output::MaxEnergyLoss, &max_loss)?,
+            normalized_loss: out(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?.min(1.0),
+        })
+    } else {
+        None
+    };
+    *outcome = SpatialOutcome {
+        body_count: sc.bodies.len(),
+        bodies,
+        contact_velocity,
+        impulse,
+        impulse_ratio,
+        critical_impulse_ratio,
+        restitution: out(Output::Restitution, &e)?,
+        regime,
+        torsional_regime: match z {
+            Spin::Off => None,
+            Spin::Restitution => Some(TorsionalRegime::Restitution),
+            Spin::Sliding => Some(TorsionalRegime::Sliding),
+        },
+        energy,
+    };
+    Ok(())
+}

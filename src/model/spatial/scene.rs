@@ -1,0 +1,444 @@
+//! A validated contact in space in the field `N`: each body's mass and
+//! inverse inertia in world axes, the contact matrix with the couple, and the
+//! impulse of each combination of tangential and twist branches.
+
+use super::*;
+
+/// One body in the field.
+#[derive(Clone)]
+pub(super) struct Body<N> {
+    pub(super) m: N,
+    pub(super) inv_m: N,
+    pub(super) tensor: Sym<N>,
+    pub(super) inv_i: Sym<N>,
+    pub(super) r: V3<N>,
+    pub(super) v: V3<N>,
+    pub(super) w: V3<N>,
+}
+
+impl<N: Field> Body<N> {
+    pub(super) fn new(body: &RigidBody, c: &V3<N>) -> Self {
+        let m = N::of(body.mass);
+        let tensor = body.inertia.map(N::of);
+        let (adj, det) = adjugate(&tensor);
+        let inv_det = N::of(1.0).div(&det);
+        let position = vector(body.position);
+        Body {
+            inv_m: N::of(1.0).div(&m),
+            inv_i: adj.map(|x| x.mul(&inv_det)),
+            r: zip(c, &position, |c, g| c.sub(g)),
+            v: vector(body.velocity),
+            w: vector(body.angular_velocity),
+            m,
+            tensor,
+        }
+    }
+
+    /// The contact-point velocity `v + ω × r`.
+    pub(super) fn contact_velocity(&self) -> V3<N> {
+        point_velocity(&self.v, &self.w, &self.r)
+    }
+}
+
+/// A validated contact in the field.
+pub(super) struct Scene<'a, N> {
+    pub(super) n: V3<N>,
+    pub(super) nu: N,
+    pub(super) bodies: Vec<Body<N>>,
+    /// `u` (relative contact-point velocity), `u·n`, `u_t`, `s̃`.
+    pub(super) u: V3<N>,
+    pub(super) un: N,
+    pub(super) ut: V3<N>,
+    pub(super) s: N,
+    pub(super) w_matrix: Sym<N>,
+    pub(super) adj: Sym<N>,
+    pub(super) det: N,
+    /// `w` and `k` of the couple.
+    pub(super) w: V3<N>,
+    pub(super) k: N,
+    /// `q = −(1 + e) u·n`.
+    pub(super) q: N,
+    pub(super) law: Reading,
+    pub(super) twist: Option<&'a Twist>,
+    /// Solutions found so far, by `(branch, spin)`; the sticking one for `μ_c`.
+    pub(super) cache: [Option<Option<Solution<N>>>; 12],
+}
+
+impl<'a, N: Radical> Scene<'a, N> {
+    pub(super) fn new(impact: &'a SpatialImpact) -> Self {
+        let c: V3<N> = vector(impact.contact.point);
+        let n = vector(impact.contact.normal);
+        let nu = norm2(&n);
+        let mut bodies = vec![Body::new(&impact.a, &c)];
+        if let Some(b) = &impact.b {
+            bodies.push(Body::new(b, &c));
+        }
+        let mut u = bodies[0].contact_velocity();
+        let mut spin = bodies[0].w.clone();
+        if let Some(b) = bodies.get(1) {
+            u = zip(&u, &b.contact_velocity(), |x, y| x.sub(y));
+            spin = zip(&spin, &b.w, |x, y| x.sub(y));
+        }
+        let un = dot(&u, &n);
+        let ut = axpy(&un.div(&nu).neg(), &n, &u);
+        let s = dot(&spin, &n);
+        // W = Σ 1/m + Σ cᵢᵀ I⁻¹ cⱼ with cᵢ = r × eᵢ; w = Σ (I⁻¹ n) × r; k = Σ nᵀ I⁻¹ n.
+        let zero = N::of(0.0);
+        let mut w_matrix: Sym<N> = std::array::from_fn(|_| zero.clone());
+        let mut w = [zero.clone(), zero.clone(), zero.clone()];
+        let mut k = zero.clone();
+        for b in &bodies {
+            let [rx, ry, rz] = &b.r;
+            let columns = [
+                [zero.clone(), rz.clone(), ry.neg()],
+                [rz.neg(), zero.clone(), rx.clone()],
+                [ry.clone(), rx.neg(), zero.clone()],
+            ];
+            let turned = [
+                sym_mul(&b.inv_i, &columns[0]),
+                sym_mul(&b.inv_i, &columns[1]),
+                sym_mul(&b.inv_i, &columns[2]),
+            ];
+            let pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+            for (slot, (i, j)) in pairs.into_iter().enumerate() {
+                let mut entry = dot(&columns[i], &turned[j]);
+                if i == j {
+                    entry = entry.add(&b.inv_m);
+                }
+                w_matrix[slot] = w_matrix[slot].add(&entry);
+            }
+            let about = sym_mul(&b.inv_i, &n);
+            w = zip(&w, &cross(&about, &b.r), |x, y| x.add(y));
+            k = k.add(&dot(&n, &about));
+        }
+        let (adj, det) = adjugate(&w_matrix);
+        let law = Reading::of(&impact.law, impact.torsion.is_some());
+        let q = N::of(1.0).add(&N::of(law.e)).mul(&un).neg();
+        Scene {
+            n,
+            nu,
+            bodies,
+            u,
+            un,
+            ut,
+            s,
+            w_matrix,
+            adj,
+            det,
+            w,
+            k,
+            q,
+            law,
+            twist: impact.torsion.as_ref(),
+            cache: Default::default(),
+        }
+    }
+
+    /// `(P, κ)` with its `P·n` and `P_t`.
+    pub(super) fn solution(&self, p: V3<N>, kappa: N) -> Solution<N> {
+        let pn = dot(&p, &self.n);
+        let pt = axpy(&pn.div(&self.nu).neg(), &self.n, &p);
+        Solution { p, kappa, pn, pt }
+    }
+
+    /// The cache slot of `(t, z)`; the kept branch's sticking (`e_t = 0`)
+    /// and restitution targets apart.
+    pub(super) fn slot(t: Tangential, z: Spin, et: f64) -> usize {
+        let stick = t == Tangential::Kept && et == 0.0;
+        (t as usize) * 6 + (z as usize) * 2 + stick as usize
+    }
+
+    /// The solution of branches `(t, z)` (`None`: its system is singular),
+    /// the kept branch targeting `U_t = −e_t u_t`.
+    pub(super) fn solve(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
+        let slot = Self::slot(t, z, et);
+        if let Some(found) = &self.cache[slot] {
+            return Ok(found.clone());
+        }
+        let found = self.compute(t, z, et)?;
+        self.cache[slot] = Some(found.clone());
+        Ok(found)
+    }
+
+    /// `κ = c₀ + c₁ (P·n)` of the sliding twist: `c₀ = −e_z s̃/k`,
+    /// `c₁ = τ μ_z ρ_p/ν`, `τ = −sgn s̃` or, without spin, the sign of the
+    /// restitution branch's couple with the same tangential branch.
+    pub(super) fn twist_terms(&mut self, t: Tangential, et: f64) -> Exact<N, (N, N)> {
+        let Some(twist) = self.twist else {
+            return Ok((N::of(0.0), N::of(0.0)));
+        };
+        let c0 = N::of(twist.restitution).mul(&self.s).div(&self.k).neg();
+        let tau = match sign(&self.s)? {
+            Ordering::Greater => -1.0,
+            Ordering::Less => 1.0,
+            Ordering::Equal => match self.solve(t, Spin::Restitution, et)? {
+                Some(rest) => match sign(&rest.kappa)? {
+                    Ordering::Greater => 1.0,
+                    Ordering::Less => -1.0,
+                    Ordering::Equal => 0.0,
+                },
+                None => 0.0,
+            },
+        };
+        let c1 = N::of(tau * twist.friction)
+            .mul(&N::of(twist.pitch_radius))
+            .div(&self.nu);
+        Ok((c0, c1))
+    }
+
+    pub(super) fn compute(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
+        let ds = match self.twist {
+            Some(tw) => N::of(1.0).add(&N::of(tw.restitution)).mul(&self.s).neg(),
+            None => N::of(0.0),
+        };
+        match t {
+            Tangential::Kept => {
+                let target = axpy(
+                    &self.q.div(&self.nu),
+                    &self.n,
+                    &map(&self.ut, |x| N::of(1.0).add(&N::of(et)).mul(x).neg()),
+                );
+                let a = sym_mul(&self.adj, &target);
+                match z {
+                    Spin::Off => Ok(Some(self.solution(map(&a, |x| x.div(&self.det)), N::of(0.0)))),
+                    Spin::Restitution => {
+                        let b = sym_mul(&self.adj, &self.w);
+                        let schur = self.k.mul_add(&self.det, &dot(&self.w, &b).neg());
+                        let kappa = ds.mul_add(&self.det, &dot(&self.w, &a).neg()).div(&schur);
+                        let p = map(&axpy(&kappa.neg(), &b, &a), |x| x.div(&self.det));
+                        Ok(Some(self.solution(p, kappa)))
+                    }
+                    Spin::Sliding => {
+                        let (c0, c1) = self.twist_terms(t, et)?;
+                        let rhs = axpy(&c0.neg(), &self.w, &target);
+                        let a = sym_mul(&self.adj, &rhs);
+                        let b = sym_mul(&self.adj, &self.w);
+                        let den = c1.mul_add(&dot(&self.n, &b), &self.det);
+                        if sign(&den)? == Ordering::Equal {
+                            return Ok(None);
+                        }
+                        let na = dot(&self.n, &a);
+                        let scale = self.det.mul(&den);
+                        let p = zip(&a, &b, |ai, bi| {
+                            ai.mul(&den).sub(&c1.mul(bi).mul(&na)).div(&scale)
+                        });
+                        let kappa = c1.mul_add(&dot(&p, &self.n), &c0);
+                        Ok(Some(self.solution(p, kappa)))
+                    }
+                }
+            }
+            Tangential::Sliding => {
+                let Some((d, along_normal)) = self.direction(z)? else {
+                    return Ok(None);
+                };
+                let wd = sym_mul(&self.w_matrix, &d);
+                let a11 = dot(&self.n, &wd);
+                let (p_scale, kappa) = match z {
+                    Spin::Off => {
+                        if sign(&a11)? == Ordering::Equal {
+                            return Ok(None);
+                        }
+                        (self.q.div(&a11), N::of(0.0))
+                    }
+                    Spin::Restitution => {
+                        let a12 = dot(&self.n, &self.w);
+                        let a21 = dot(&self.w, &d);
+                        let det2 = a11.mul_add(&self.k, &a12.mul(&a21).neg());
+                        if sign(&det2)? == Ordering::Equal {
+                            return Ok(None);
+                        }
+                        (
+                            self.q.mul_add(&self.k, &a12.mul(&ds).neg()).div(&det2),
+                            a11.mul_add(&ds, &a21.mul(&self.q).neg()).div(&det2),
+                        )
+                    }
+                    Spin::Sliding => {
+                        let (c0, c1) = self.twist_terms(t, et)?;
+                        let nw = dot(&self.n, &self.w);
+                        let den = c1.mul(&self.nu).mul_add(&nw, &a11);
+                        if sign(&den)? == Ordering::Equal {
+                            return Ok(None);
+                        }
+                        let p_scale = nw.neg().mul_add(&c0, &self.q).div(&den);
+                        let kappa = c1.mul(&self.nu).mul_add(&p_scale, &c0);
+                        (p_scale, kappa)
+                    }
+                };
+                let mut found = self.solution(map(&d, |x| p_scale.mul(x)), kappa);
+                if along_normal {
+                    // P ∥ n: no tangential part, exactly (not a cancellation
+                    // the bounded stages could not certify as zero).
+                    found.pt = [N::of(0.0), N::of(0.0), N::of(0.0)];
+                }
+                Ok(Some(found))
+            }
+        }
+    }
+
+    /// The sliding impulse's direction `n + c √(ν/|w_s|²) w_s`, and whether
+    /// it is `n` itself; `None` when the sticking system it needs is singular.
+    pub(super) fn direction(&mut self, z: Spin) -> Exact<N, Option<(V3<N>, bool)>> {
+        if self.law.c == 0.0 {
+            return Ok(Some((self.n.clone(), true)));
+        }
+        let slip = norm2(&self.ut);
+        let (ws, size) = if sign(&slip)? == Ordering::Greater {
+            (map(&self.ut, |x| x.neg()), slip)
+        } else {
+            let Some(stick) = self.solve(Tangential::Kept, z, 0.0)? else {
+                return Ok(None);
+            };
+            let size = norm2(&stick.pt);
+            if sign(&size)? == Ordering::Equal {
+                if self.law.prescribed {
+                    return Err(Fail::Refused(ImpactError::NoSlipDirection {
+                        input: Input::ImpulseRatio,
+                    }));
+                }
+                return Ok(Some((self.n.clone(), true)));
+            }
+            (stick.pt, size)
+        };
+        let root = self.nu.div(&size).sqrt().map_err(Fail::Undecided)?;
+        let scale = N::of(self.law.c).mul(&root);
+        Ok(Some((axpy(&scale, &ws, &self.n), false)))
+    }
+
+    /// Whether the kept tangential branch holds: `P·n ≠ 0`, `ν |P_t|² ≤ f² (P·n)²`.
+    pub(super) fn tangential_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
+        let Some(s) = s else { return Ok(false) };
+        if sign(&s.pn)? == Ordering::Equal {
+            return Ok(false);
+        }
+        let f = N::of(self.law.cap);
+        let cap = f.mul(&s.pn);
+        let room = cap.mul(&cap).sub(&self.nu.mul(&norm2(&s.pt)));
+        Ok(sign(&room)? != Ordering::Less)
+    }
+
+    /// Whether the twist's restitution branch holds: `P·n ≠ 0`,
+    /// `(κ + e_z s̃/k)² ≤ (μ_z ρ_p P·n/ν)²`.
+    pub(super) fn spin_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
+        let (Some(s), Some(twist)) = (s, self.twist) else {
+            return Ok(false);
+        };
+        if sign(&s.pn)? == Ordering::Equal {
+            return Ok(false);
+        }
+        let beyond = N::of(twist.restitution).mul(&self.s).div(&self.k).add(&s.kappa);
+        let cap = N::of(twist.friction)
+            .mul(&N::of(twist.pitch_radius))
+            .mul(&s.pn)
+            .div(&self.nu);
+        Ok(sign(&cap.mul(&cap).sub(&beyond.mul(&beyond)))? != Ordering::Less)
+    }
+
+    /// The one valid combination of branches, with its solution.
+    pub(super) fn choose(&mut self) -> Exact<N, (Tangential, Spin, Option<Solution<N>>)> {
+        let et = self.law.kept.unwrap_or(0.0);
+        let tangentials: &[Tangential] = if self.law.kept.is_some() {
+            &[Tangential::Kept, Tangential::Sliding]
+        } else {
+            &[Tangential::Sliding]
+        };
+        let spins: &[Spin] = if self.twist.is_some() {
+            &[Spin::Restitution, Spin::Sliding]
+        } else {
+            &[Spin::Off]
+        };
+        // The count of valid combinations and the last one (no allocation per solve).
+        let (mut count, mut chosen) = (0, (Tangential::Sliding, Spin::Off));
+        for &t in tangentials {
+            for &z in spins {
+                let t_ok = match t {
+                    Tangential::Kept => {
+                        let s = self.solve(t, z, et)?;
+                        self.tangential_holds(&s)?
+                    }
+                    Tangential::Sliding if self.law.kept.is_some() => {
+                        let s = self.solve(Tangential::Kept, z, et)?;
+                        !self.tangential_holds(&s)?
+                    }
+                    Tangential::Sliding => true,
+                };
+                if !t_ok {
+                    continue;
+                }
+                let z_ok = match z {
+                    Spin::Off => true,
+                    Spin::Restitution => {
+                        let s = self.solve(t, z, et)?;
+                        self.spin_holds(&s)?
+                    }
+                    Spin::Sliding => {
+                        let s = self.solve(t, Spin::Restitution, et)?;
+                        !self.spin_holds(&s)?
+                    }
+                };
+                if z_ok {
+                    count += 1;
+                    chosen = (t, z);
+                }
+            }
+        }
+        if count != 1 {
+            return Err(Fail::Refused(ImpactError::NotUnique {
+                input: Input::Torsion,
+                combinations: count,
+            }));
+        }
+        let (t, z) = chosen;
+        Ok((t, z, self.solve(t, z, et)?))
+    }
+
+    /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
+    /// (`None` when `P·n = 0`).
+    pub(super) fn ratio(&self, s: &Solution<N>, output: Output) -> Exact<N, Option<f64>> {
+        if sign(&s.pn)? == Ordering::Equal {
+            return Ok(None);
+        }
+        let size = self.nu.mul(&norm2(&s.pt));
+        Ok(Some(out_times_sqrt(
+            output,
+            &N::of(1.0).div(&abs(&s.pn)?),
+            &size,
+        )?))
+    }
+
+    /// `x/|n|` correctly rounded.
+    pub(super) fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
+        out_times_sqrt(output, &x.div(&self.nu), &self.nu)
+    }
+
+    pub(super) fn vector_out(outputs: [Output; 3], x: &V3<N>) -> Exact<N, [f64; 3]> {
+        Ok([
+            out(outputs[0], &x[0])?,
+            out(outputs[1], &x[1])?,
+            out(outputs[2], &x[2])?,
+        ])
+    }
+
+    /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
+    /// adjugate and the Schur complement of `W`.
+    pub(super) fn max_loss(&self) -> N {
+        let a = sym_mul(&self.adj, &self.u);
+        let mut twice = dot(&self.u, &a).div(&self.det);
+        if self.twist.is_some() {
+            let b = sym_mul(&self.adj, &self.w);
+            let schur = self.k.mul_add(&self.det, &dot(&self.w, &b).neg());
+            let lever = self.s.mul_add(&self.det, &dot(&self.w, &a).neg());
+            twice = twice.add(&lever.mul(&lever).div(&self.det.mul(&schur)));
+        }
+        half::<N>().mul(&twice)
+    }
+
+    pub(super) fn initial_energy(&self) -> N {
+        let mut total = N::of(0.0);
+        for b in &self.bodies {
+            let linear = b.m.mul(&norm2(&b.v));
+            let angular = dot(&b.w, &sym_mul(&b.tensor, &b.w));
+            total = total.add(&half::<N>().mul(&linear.add(&angular)));
+        }
+        total
+    }
+}

@@ -1,0 +1,81 @@
+//! Small vectors and symmetric 3×3 matrices over any [`Field`], for the
+//! contact in space.
+
+use crate::arith::Field;
+
+pub(super) type V3<N> = [N; 3];
+
+#[inline(always)]
+pub(super) fn vector<N: Field>(x: [f64; 3]) -> V3<N> {
+    [N::of(x[0]), N::of(x[1]), N::of(x[2])]
+}
+
+#[inline(always)]
+pub(super) fn dot<N: Field>(a: &V3<N>, b: &V3<N>) -> N {
+    a[0].mul_add(&b[0], &a[1].mul_add(&b[1], &a[2].mul(&b[2])))
+}
+
+#[inline(always)]
+pub(super) fn cross<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
+    [
+        a[1].mul_add(&b[2], &a[2].mul(&b[1]).neg()),
+        a[2].mul_add(&b[0], &a[0].mul(&b[2]).neg()),
+        a[0].mul_add(&b[1], &a[1].mul(&b[0]).neg()),
+    ]
+}
+
+#[inline(always)]
+pub(super) fn map<N: Field>(a: &V3<N>, f: impl Fn(&N) -> N) -> V3<N> {
+    [f(&a[0]), f(&a[1]), f(&a[2])]
+}
+
+#[inline(always)]
+pub(super) fn zip<N: Field>(a: &V3<N>, b: &V3<N>, f: impl Fn(&N, &N) -> N) -> V3<N> {
+    [f(&a[0], &b[0]), f(&a[1], &b[1]), f(&a[2], &b[2])]
+}
+
+/// `k a + b`.
+#[inline(always)]
+pub(super) fn axpy<N: Field>(k: &N, a: &V3<N>, b: &V3<N>) -> V3<N> {
+    zip(a, b, |x, y| k.mul_add(x, y))
+}
+
+/// A symmetric 3×3 matrix as `[xx, yy, zz, xy, xz, yz]`.
+pub(super) type Sym<N> = [N; 6];
+
+#[inline(always)]
+pub(super) fn sym_mul<N: Field>(m: &Sym<N>, x: &V3<N>) -> V3<N> {
+    let [xx, yy, zz, xy, xz, yz] = m;
+    [
+        xx.mul_add(&x[0], &xy.mul_add(&x[1], &xz.mul(&x[2]))),
+        xy.mul_add(&x[0], &yy.mul_add(&x[1], &yz.mul(&x[2]))),
+        xz.mul_add(&x[0], &yz.mul_add(&x[1], &zz.mul(&x[2]))),
+    ]
+}
+
+/// The adjugate and the determinant of a symmetric matrix.
+pub(super) fn adjugate<N: Field>(m: &Sym<N>) -> (Sym<N>, N) {
+    let [a, b, c, d, e, f] = m;
+    let adj = [
+        b.mul_add(c, &f.mul(f).neg()),
+        a.mul_add(c, &e.mul(e).neg()),
+        a.mul_add(b, &d.mul(d).neg()),
+        e.mul_add(f, &d.mul(c).neg()),
+        d.mul_add(f, &b.mul(e).neg()),
+        d.mul_add(e, &a.mul(f).neg()),
+    ];
+    let det = a.mul_add(&adj[0], &d.mul_add(&adj[3], &e.mul(&adj[4])));
+    (adj, det)
+}
+
+/// `v + ω × r`.
+#[inline(always)]
+pub(super) fn point_velocity<N: Field>(v: &V3<N>, w: &V3<N>, r: &V3<N>) -> V3<N> {
+    zip(v, &cross(w, r), |a, b| a.add(b))
+}
+
+/// `|x|²` of a vector `x`.
+#[inline(always)]
+pub(super) fn norm2<N: Field>(x: &V3<N>) -> N {
+    dot(x, x)
+}
