@@ -316,10 +316,20 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
     )
 }
 
-/// Refuses every request but the probes, metrics and the explorer page
-/// without `Authorization: Bearer <key>` (401).
+/// Whether `path` is the API's documentation: Swagger UI at `/docs` and the
+/// OpenAPI document it loads.
+fn is_documentation(path: &str) -> bool {
+    path == "/openapi.json" || path == "/docs" || path.starts_with("/docs/")
+}
+
+/// Refuses every request but the probes, metrics, the explorer page and the
+/// API's documentation without `Authorization: Bearer <key>` (401). The pages
+/// are open because a browser opening them cannot send the key; they hold no
+/// data and compute nothing, and every call they make to `/v1` sends the key
+/// typed into them (the explorer's field, Swagger UI's "Authorize").
 async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    if OPEN_ROUTES.contains(&request.uri().path()) || web::is_page(request.uri().path()) {
+    let path = request.uri().path();
+    if OPEN_ROUTES.contains(&path) || web::is_page(path) || is_documentation(path) {
         return next.run(request).await;
     }
     let token = request

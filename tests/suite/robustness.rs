@@ -603,13 +603,38 @@ async fn the_api_key_guards_every_route_but_health() {
         .await
         .unwrap();
     assert_eq!(health.status(), StatusCode::OK);
-    let docs = app
+    // The documentation is open like the explorer page (a browser opening
+    // either cannot send the key); the document declares the bearer scheme.
+    for path in ["/openapi.json", "/docs/"] {
+        let docs = app
+            .client
+            .get(format!("{}{path}", app.base))
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(docs.status(), StatusCode::OK, "{path}");
+    }
+    let document: Value = app
         .client
         .get(format!("{}/openapi.json", app.base))
         .send()
         .await
+        .unwrap()
+        .json()
+        .await
         .unwrap();
-    assert_eq!(docs.status(), StatusCode::UNAUTHORIZED);
+    assert!(
+        document["components"]["securitySchemes"]["bearer"].is_object(),
+        "{document}"
+    );
+    // A path beside the documentation is not opened by it.
+    let beside = app
+        .client
+        .get(format!("{}/docsx", app.base))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(beside.status(), StatusCode::UNAUTHORIZED);
 }
 
 #[tokio::test]
