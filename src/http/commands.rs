@@ -37,7 +37,33 @@ pub fn run_command(cli: Cli) -> ExitCode {
             let shard = shards.zip(index).map(|(shards, index)| Shard { shards, index });
             run(sweep(request, output, format, shard))
         }
+        Some(Command::Collect { output, parts }) => collect(output, parts),
         None => run(serve(cli.serve)),
+    }
+}
+
+/// `restitution collect`: the parts checked and joined into `output`.
+fn collect(output: std::path::PathBuf, parts: Vec<std::path::PathBuf>) -> ExitCode {
+    let opened: Result<Vec<_>, _> = parts
+        .iter()
+        .map(|p| std::fs::File::open(p).map(|f| (p.display().to_string(), std::io::BufReader::new(f))))
+        .collect();
+    let result = opened
+        .map_err(crate::http::collect::CollectError::from)
+        .and_then(|parts| {
+            let file = std::fs::File::create(&output)?;
+            crate::http::collect::collect(parts, std::io::BufWriter::new(file))
+        });
+    match result {
+        Ok(rows) => {
+            eprintln!("restitution collect: {rows} rows in {}", output.display());
+            ExitCode::SUCCESS
+        }
+        Err(error) => {
+            eprintln!("restitution collect: {error}");
+            let _ = std::fs::remove_file(&output);
+            ExitCode::FAILURE
+        }
     }
 }
 

@@ -65,6 +65,18 @@ pub enum Command {
         #[arg(long, requires = "shards")]
         index: Option<u64>,
     },
+    /// Join the Arrow parts of a sharded sweep into one stream, after checking
+    /// that they are slices of one sweep (the same request hash, model version,
+    /// precision and columns) whose ranges tile it in order; exits 1, naming
+    /// the part, when they are not.
+    Collect {
+        /// Where to write the joined Arrow stream.
+        #[arg(long)]
+        output: PathBuf,
+        /// The parts, in index order (`part-0.arrow part-1.arrow …`).
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+    },
 }
 
 /// Settings of the HTTP service.
