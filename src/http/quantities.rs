@@ -11,8 +11,8 @@ use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
+use crate::http::sweeps::CaseDto;
 use crate::quantity::{DIMENSIONLESS, Input, Output};
-use crate::{BodiesImpact, Case, PlanarImpact, SpatialImpact, TorsionalImpact};
 
 /// The routes of the quantity table.
 pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
@@ -79,27 +79,20 @@ impl Quantity {
     }
 }
 
-fn case<C: Case>(case: &'static str, endpoint: &'static str) -> CaseQuantities {
-    CaseQuantities {
-        case,
-        endpoint,
-        inputs: C::INPUTS.iter().map(Quantity::input).collect(),
-        outputs: C::OUTPUTS.iter().map(Quantity::output).collect(),
-    }
-}
-
-/// The table, from the cases' declarations.
+/// The table, from the cases' declarations, in the order of the sweep
+/// request's `case` (`CaseDto`).
 pub fn table() -> QuantityTable {
     debug_assert_eq!(DIMENSIONLESS, "1");
     QuantityTable {
-        cases: vec![
-            case::<PlanarImpact>("normal", "/v1/impacts/normal"),
-            case::<PlanarImpact>("oblique", "/v1/impacts/oblique"),
-            case::<PlanarImpact>("tangential", "/v1/impacts/tangential"),
-            case::<TorsionalImpact>("torsional", "/v1/impacts/torsional"),
-            case::<BodiesImpact>("planar", "/v1/impacts/planar"),
-            case::<SpatialImpact>("spatial", "/v1/impacts/spatial"),
-        ],
+        cases: CaseDto::ALL
+            .iter()
+            .map(|&case| CaseQuantities {
+                case: case.as_str(),
+                endpoint: case.endpoint(),
+                inputs: case.inputs().iter().map(Quantity::input).collect(),
+                outputs: case.outputs().iter().map(Quantity::output).collect(),
+            })
+            .collect(),
     }
 }
 
@@ -140,7 +133,10 @@ mod tests {
             assert!(!c.inputs.is_empty() && !c.outputs.is_empty());
         }
         let spatial = &table.cases[5];
-        assert_eq!(spatial.outputs.len(), SpatialImpact::OUTPUTS.len());
+        assert_eq!(
+            spatial.outputs.len(),
+            <crate::SpatialImpact as crate::Case>::OUTPUTS.len()
+        );
         assert_eq!(spatial.outputs[0].path, "/bodies/0/velocity/x");
         assert_eq!(spatial.outputs[0].unit, "m/s");
     }

@@ -9,6 +9,7 @@
 //! (`negotiate.rs`).
 
 mod arrow;
+mod cases;
 mod encode;
 mod negotiate;
 mod plan;
@@ -29,6 +30,8 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use self::arrow::{ArrowLayout, ArrowSink};
+pub(crate) use self::cases::on_sweep;
+pub use self::cases::{AnySweep, CaseDto, build};
 use self::encode::{RowWriter, table};
 pub use self::negotiate::{Format, negotiate};
 pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
@@ -36,19 +39,14 @@ pub use self::reduce::{
     ExtremeDto, HistogramCounts, HistogramDto, MAX_BINS, NameSummary, NumberSummary, OutputSummary,
     ReduceDto, RefusedDto, SweepReduction, reduce_blocking,
 };
-pub use self::request::{AxisDto, CaseDto, CombineDto, RangeDto, SliceDto, SweepRequest, SweepTable};
+pub use self::request::{AxisDto, CombineDto, RangeDto, SliceDto, SweepRequest, SweepTable};
 pub use self::stream::Streams;
 use self::stream::stream;
 use super::ServiceConfig;
-use super::dto::PrecisionDto;
-use super::extract::{ApiJson, parse_value};
-use super::impacts::{
-    NormalRequest, ObliqueRequest, PlanarContactRequest, SpatialContactRequest, TangentialRequest,
-    TorsionalRequest,
-};
+use super::extract::ApiJson;
 use super::problem::{ApiError, Problem, Problems};
 use super::telemetry::Telemetry;
-use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
+use crate::impact::{Case, Precision};
 use crate::sweep::{CaseSweep, Sweep};
 use prometheus_client::metrics::counter::Counter;
 
@@ -141,93 +139,6 @@ pub enum SweepJson {
     Table(SweepTable),
     /// The summary asked for by `reduce`.
     Reduction(SweepReduction),
-}
-
-/// A checked sweep of any case.
-#[derive(Debug)]
-pub enum AnySweep {
-    /// The normal, oblique and tangential cases.
-    Planar(Sweep<CaseSweep<PlanarImpact>>),
-    /// The torsional case.
-    Torsional(Sweep<CaseSweep<TorsionalImpact>>),
-    /// Two bodies in the plane.
-    Bodies(Sweep<CaseSweep<BodiesImpact>>),
-    /// The contact in space.
-    Spatial(Sweep<CaseSweep<SpatialImpact>>),
-}
-
-/// Runs `$body` with `$s` bound to the sweep inside an [`AnySweep`].
-macro_rules! on_sweep {
-    ($any:expr, $s:ident => $body:expr) => {
-        match $any {
-            AnySweep::Planar($s) => $body,
-            AnySweep::Torsional($s) => $body,
-            AnySweep::Bodies($s) => $body,
-            AnySweep::Spatial($s) => $body,
-        }
-    };
-}
-pub(crate) use on_sweep;
-
-/// Checks a sweep request whole (base, axes, outputs, precision, range, the
-/// point limit for the format) and builds its sweep.
-pub fn build(request: &SweepRequest, limit: u64, format: Format) -> Result<(AnySweep, Precision), ApiError> {
-    fn checked<C: Case>(
-        request: &SweepRequest,
-        base: C,
-        base_precision: PrecisionDto,
-        limit: u64,
-        format: Format,
-    ) -> Result<(Sweep<CaseSweep<C>>, Precision), ApiError> {
-        let precision = request::precision(request.precision, base_precision)?;
-        Ok((
-            request::sweep(request, base, precision, limit, format)?,
-            precision,
-        ))
-    }
-    let base = request.base.clone();
-    Ok(match request.case {
-        CaseDto::Normal => {
-            let base: NormalRequest = parse_value(base, "/base")?;
-            let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            let (s, p) = checked(request, impact, base.precision, limit, format)?;
-            (AnySweep::Planar(s), p)
-        }
-        CaseDto::Oblique => {
-            let base: ObliqueRequest = parse_value(base, "/base")?;
-            let impact = PlanarImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            let (s, p) = checked(request, impact, base.precision, limit, format)?;
-            (AnySweep::Planar(s), p)
-        }
-        CaseDto::Tangential => {
-            let base: TangentialRequest = parse_value(base, "/base")?;
-            let (s, p) = checked(request, PlanarImpact::from(&base), base.precision, limit, format)?;
-            (AnySweep::Planar(s), p)
-        }
-        CaseDto::Torsional => {
-            let base: TorsionalRequest = parse_value(base, "/base")?;
-            let (s, p) = checked(
-                request,
-                TorsionalImpact::from(&base),
-                base.precision,
-                limit,
-                format,
-            )?;
-            (AnySweep::Torsional(s), p)
-        }
-        CaseDto::Planar => {
-            let base: PlanarContactRequest = parse_value(base, "/base")?;
-            let impact = BodiesImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            let (s, p) = checked(request, impact, base.precision, limit, format)?;
-            (AnySweep::Bodies(s), p)
-        }
-        CaseDto::Spatial => {
-            let base: SpatialContactRequest = parse_value(base, "/base")?;
-            let impact = SpatialImpact::try_from(&base).map_err(|e| e.under("/base"))?;
-            let (s, p) = checked(request, impact, base.precision, limit, format)?;
-            (AnySweep::Spatial(s), p)
-        }
-    })
 }
 
 /// How to answer a checked sweep.

@@ -5,44 +5,13 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+use super::cases::CaseDto;
 use super::negotiate::Format;
 use crate::http::dto::PrecisionDto;
 use crate::http::problem::ApiError;
 use crate::impact::{Case, Precision};
 use crate::quantity::{Input, Output};
 use crate::sweep::{Axis, AxisValues, CaseSweep, CaseSweepError, GridError, Sweep};
-
-/// The physical case a sweep evaluates.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum CaseDto {
-    /// `POST /v1/impacts/normal`.
-    Normal,
-    /// `POST /v1/impacts/oblique`.
-    Oblique,
-    /// `POST /v1/impacts/tangential`.
-    Tangential,
-    /// `POST /v1/impacts/torsional`.
-    Torsional,
-    /// `POST /v1/impacts/planar`.
-    Planar,
-    /// `POST /v1/impacts/spatial`.
-    Spatial,
-}
-
-impl CaseDto {
-    /// The case's name on the wire.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            CaseDto::Normal => "normal",
-            CaseDto::Oblique => "oblique",
-            CaseDto::Tangential => "tangential",
-            CaseDto::Torsional => "torsional",
-            CaseDto::Planar => "planar",
-            CaseDto::Spatial => "spatial",
-        }
-    }
-}
 
 /// How axes combine into points.
 #[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, ToSchema)]
