@@ -5,6 +5,7 @@
 //! shedding at the concurrency limit → timeout → body limit → router →
 //! `ApiJson` extractor (DTO) → solver → response DTO.
 
+mod auth;
 pub mod collect;
 pub mod commands;
 pub mod config;
@@ -26,9 +27,9 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
-use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::extract::{DefaultBodyLimit, Request};
 use axum::http::{HeaderName, HeaderValue, StatusCode};
-use axum::middleware::{self, Next};
+use axum::middleware;
 use axum::response::{IntoResponse, Response};
 use axum::{Json, Router};
 use serde::Serialize;
@@ -285,7 +286,7 @@ fn stack(router: Router, config: &ServiceConfig, telemetry: Option<telemetry::Te
                 .layer(DefaultBodyLimit::max(config.body_limit)),
         );
     let router = match &config.api_key {
-        Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), require_api_key)),
+        Some(key) => router.layer(middleware::from_fn_with_state(key.clone(), auth::require_api_key)),
         None => router,
     };
     match cors(&config.cors_allow_origins) {
@@ -315,57 +316,6 @@ fn cors(origins: &[String]) -> Option<tower_http::cors::CorsLayer> {
                 axum::http::HeaderName::from_static("x-sweep-points"),
             ]),
     )
-}
-
-/// Whether `path` is the API's documentation: Swagger UI at `/docs` and the
-/// OpenAPI document it loads.
-fn is_documentation(path: &str) -> bool {
-    path == "/openapi.json" || path == "/docs" || path.starts_with("/docs/")
-}
-
-/// Refuses every request but the probes, metrics, the explorer page and the
-/// API's documentation without `Authorization: Bearer <key>` (401). The pages
-/// are open because a browser opening them cannot send the key; they hold no
-/// data and compute nothing, and every call they make to `/v1` sends the key
-/// typed into them (the explorer's field, Swagger UI's "Authorize").
-async fn require_api_key(State(key): State<Arc<str>>, request: Request, next: Next) -> Response {
-    let path = request.uri().path();
-    if OPEN_ROUTES.contains(&path) || web::is_page(path) || is_documentation(path) {
-        return next.run(request).await;
-    }
-    let token = request
-        .headers()
-        .get(axum::http::header::AUTHORIZATION)
-        .and_then(|v| v.to_str().ok())
-        .and_then(|v| v.split_once(' '))
-        .filter(|(scheme, _)| scheme.eq_ignore_ascii_case("bearer"))
-        .map(|(_, token)| token.trim());
-    let refusal = match token {
-        Some(token) if same_secret(token.as_bytes(), key.as_bytes()) => return next.run(request).await,
-        Some(_) => ApiError::new(
-            StatusCode::UNAUTHORIZED,
-            "invalid-api-key",
-            "Invalid API key",
-            "the bearer token is not the service's API key",
-        ),
-        None => ApiError::new(
-            StatusCode::UNAUTHORIZED,
-            "missing-api-key",
-            "API key required",
-            "send the service's API key as `Authorization: Bearer <key>`",
-        ),
-    };
-    let mut response = refusal.into_response();
-    response.headers_mut().insert(
-        axum::http::header::WWW_AUTHENTICATE,
-        HeaderValue::from_static("Bearer realm=\"restitution\""),
-    );
-    response
-}
-
-/// Compares secrets in time independent of where they differ.
-fn same_secret(given: &[u8], key: &[u8]) -> bool {
-    given.len() == key.len() && given.iter().zip(key).fold(0u8, |acc, (a, b)| acc | (a ^ b)) == 0
 }
 
 async fn not_found(request: Request) -> ApiError {
