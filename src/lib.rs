@@ -51,6 +51,7 @@
 // Unsafe code only where `kernels` calls the copy compiled for the CPU's features.
 #![deny(unsafe_code)]
 
+pub mod accuracy;
 pub(crate) mod arith;
 pub mod error;
 pub mod fit;
@@ -71,6 +72,7 @@ pub mod sweep;
 #[cfg(feature = "server")]
 pub mod http;
 
+pub use accuracy::{ErrorScales, PROMISED_RELATIVE_ERROR};
 pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
 pub use impact::{
     BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, RigidBody,

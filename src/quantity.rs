@@ -53,7 +53,7 @@ macro_rules! quantities {
             /// The SI unit (`m/s`, `rad/s`, `kg`, `kg·m²`, `m`, `N·s`,
             /// `N·m·s`, `J`), [`DIMENSIONLESS`] for a pure number, empty for
             /// a name or a law.
-            pub fn unit(self) -> &'static str {
+            pub const fn unit(self) -> &'static str {
                 match self {
                     $($enum::$variant => $unit,)*
                 }

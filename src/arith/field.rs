@@ -7,6 +7,7 @@ use std::cmp::Ordering;
 use super::bounded::Bounded;
 use super::compensated::{Compensated, Unsettled};
 use super::filtered::{Filtered, Uncertain};
+use crate::accuracy::ScaleKind;
 
 /// A number the exact model can be evaluated in.
 pub(crate) trait Field: Clone {
@@ -42,6 +43,20 @@ pub(crate) trait Field: Clone {
     fn sign(&self) -> Result<Ordering, Self::Undecided>;
     /// The exact value correctly rounded to f64 (`±∞` beyond the range).
     fn round(&self) -> Result<f64, Self::Undecided>;
+    /// An output of unit class `kind`: [`Field::round`], except in `fast`
+    /// arithmetic, which answers its own value when its error bound is
+    /// within the promise ([`crate::accuracy`]).
+    #[inline(always)]
+    fn round_output(&self, kind: ScaleKind) -> Result<f64, Self::Undecided> {
+        let _ = kind;
+        self.round()
+    }
+    /// An output `x √y` of unit class `kind`, as [`Field::round_output`].
+    #[inline(always)]
+    fn round_output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Self::Undecided> {
+        let _ = kind;
+        self.round_times_sqrt(y)
+    }
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;
     /// `x √y` (`y ≥ 0`) correctly rounded: the exact fields decide it from
@@ -189,26 +204,26 @@ impl Field for Filtered {
         Self::sign(self)
     }
     /// The f64 value itself (`fast` outputs are not rounded again), with a
-    /// zero written `+0.0`. The finiteness is tested on the returned value,
-    /// so that the caller's test of the same value ([`crate::model::out`])
-    /// is known true and folded away.
+    /// zero written `+0.0`, when its error bound is within the promise of a
+    /// dimensionless number relative to itself (the model's outputs go
+    /// through [`Field::round_output`]).
     #[inline(always)]
     fn round(&self) -> Result<f64, Uncertain> {
-        let v = self.value() + 0.0;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(Uncertain::Range)
-        }
+        self.output(ScaleKind::Dimensionless)
     }
     #[inline(always)]
     fn round_times_sqrt(&self, y: &Self) -> Result<f64, Uncertain> {
-        let v = self.value() * y.value().sqrt() + 0.0;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(Uncertain::Range)
-        }
+        self.output_times_sqrt(y, ScaleKind::Dimensionless)
+    }
+    /// The f64 value itself when its error bound is within the promise
+    /// ([`Filtered::output`]).
+    #[inline(always)]
+    fn round_output(&self, kind: ScaleKind) -> Result<f64, Uncertain> {
+        self.output(kind)
+    }
+    #[inline(always)]
+    fn round_output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Uncertain> {
+        self.output_times_sqrt(y, kind)
     }
     fn approx(&self) -> f64 {
         self.value()

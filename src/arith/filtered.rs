@@ -40,6 +40,7 @@
 use std::cmp::Ordering;
 
 use super::compensated::{FLOOR, LAMBDA_MAX, M_GROWTH, U, floored, max, product_magnitude};
+use crate::accuracy::{ErrorScales, PROMISED_RELATIVE_ERROR, ScaleKind};
 
 /// The factor applied to `λ u M` where a decision is made: covers the rules'
 /// dropped second-order terms and the roundings of `M` (module documentation).
@@ -58,6 +59,35 @@ pub(crate) enum Uncertain {
     /// The value lies within its error bound of zero: its sign is the exact
     /// stages' to decide.
     Close,
+    /// An output's error bound exceeds the promised error
+    /// ([`PROMISED_RELATIVE_ERROR`] of its magnitude or scale): its value is
+    /// the exact stages' to give.
+    Inaccurate,
+}
+
+/// The bound an output is answered with: with `p` the promise,
+/// `|x − h| ≤ (p/2) max(|h|, S)` gives `|x − h| ≤ (p/2) (max(|x|, S) + |x − h|)`,
+/// so `|x − h| ≤ (p/2) / (1 − p/2) max(|x|, S)`, within [`PROMISED_RELATIVE_ERROR`].
+const ACCEPTED_RELATIVE_BOUND: f64 = 0.5 * PROMISED_RELATIVE_ERROR;
+
+thread_local! {
+    /// The scales of the impact being evaluated ([`ErrorScales::by_kind`]),
+    /// set by [`measure_against`] before each `fast` evaluation; zeros (the
+    /// promise relative to each output itself) until then.
+    static SCALES: std::cell::Cell<[f64; 6]> = const { std::cell::Cell::new([0.0; 6]) };
+}
+
+/// Sets the scales the outputs of the next `fast` evaluations on this thread
+/// are measured against.
+#[inline(always)]
+pub(crate) fn measure_against(scales: &ErrorScales) {
+    SCALES.with(|s| s.set(scales.by_kind()));
+}
+
+/// The scale of outputs of `kind` in the impact being evaluated.
+#[inline(always)]
+fn scale_of(kind: ScaleKind) -> f64 {
+    SCALES.with(|s| s.get()[kind as usize])
 }
 
 /// `M` of `h`, one correct rounding of an exact value where no underflow
@@ -247,6 +277,65 @@ impl Filtered {
         })
     }
 
+    /// The output of unit class `kind`: `h` (written `+0.0` for a zero), when
+    /// its error bound is within [`ACCEPTED_RELATIVE_BOUND`] of the larger of
+    /// `|h|` and the kind's scale `S`. An exact zero (`M = 0`) and an input
+    /// (`λ = 0`) are exact; a larger bound (a cancellation below the scale,
+    /// a nearly singular solve) is [`Uncertain::Inaccurate`], and a value out
+    /// of the f64 range or `λ` past its limit [`Uncertain::Range`].
+    #[inline(always)]
+    pub(crate) fn output(&self, kind: ScaleKind) -> Result<f64, Uncertain> {
+        let v = self.h + 0.0;
+        // (Tested on the returned value, so that the caller's test of the
+        // same value, `crate::model::out`, is known true and folded away.)
+        if !v.is_finite() || self.lambda > LAMBDA_MAX {
+            return Err(Uncertain::Range);
+        }
+        // An exact zero or input has a zero bound; a NaN or infinite bound
+        // compares false.
+        let bound = (self.lambda * (U * SLACK)) * self.m;
+        if bound <= ACCEPTED_RELATIVE_BOUND * max(v.abs(), scale_of(kind)) {
+            Ok(v)
+        } else {
+            Err(Uncertain::Inaccurate)
+        }
+    }
+
+    /// `x √y` of unit class `kind` as f64 forms it, `h_x · √h_y`, for `y`
+    /// decided non-negative. With `E` the bounds: where `h_y > E_y` and
+    /// `h_x ≠ 0`, `|√y − √h_y| = |y − h_y| / (√y + √h_y) ≤ E_y / √h_y`, so the
+    /// error is at most `|h| (E_x/|h_x| + E_y/h_y + 2u)` and second-order
+    /// terms; elsewhere (a cancelled `y` or `x`) at most
+    /// `|x| √y + |h| ≤ (|h_x| + E_x) √(max(h_y, 0) + E_y) + |h|`. Each is
+    /// grown by `1 + 2⁻¹⁰` (the dropped terms and this bound's own
+    /// roundings) and the smallest normal (a product that underflowed), and
+    /// accepted as [`Filtered::output`]'s.
+    #[inline(always)]
+    pub(crate) fn output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Uncertain> {
+        let v = self.h * y.h.sqrt() + 0.0;
+        if !v.is_finite() || self.lambda > LAMBDA_MAX || y.lambda > LAMBDA_MAX {
+            return Err(Uncertain::Range);
+        }
+        if self.m == 0.0 || y.m == 0.0 {
+            // An exact zero factor: the exact zero, `+0.0`.
+            return Ok(v);
+        }
+        let error_x = (self.lambda * (U * SLACK)) * self.m;
+        let error_y = (y.lambda * (U * SLACK)) * y.m;
+        let bound = if y.h > error_y && self.h != 0.0 {
+            v.abs() * (error_x / self.h.abs() + error_y / y.h + 2.0 * U)
+        } else {
+            (self.h.abs() + error_x) * (y.h.max(0.0) + error_y).sqrt() + v.abs()
+        };
+        let bound = bound * (1.0 + 1.0 / 1024.0) + f64::MIN_POSITIVE;
+        // A NaN or infinite bound compares false.
+        if bound <= ACCEPTED_RELATIVE_BOUND * max(v.abs(), scale_of(kind)) {
+            Ok(v)
+        } else {
+            Err(Uncertain::Inaccurate)
+        }
+    }
+
     /// The exact value's sign, unless the bound cannot decide it.
     #[inline(always)]
     pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
@@ -326,6 +415,7 @@ mod tests {
     fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
         let mut rng = Rng::new(0xf11e);
         let (mut decided, mut close, mut roots) = (0, 0, 0);
+        let (mut answered, mut answered_roots) = (0, 0);
         for case in 0..6_000 {
             let span = [4.0, 60.0, 600.0][case % 3];
             let mut pool: Vec<(Filtered, BigRational, f64)> = (0..4)
@@ -397,6 +487,28 @@ mod tests {
                     }
                     Err(Uncertain::Close) => close += 1,
                     Err(Uncertain::Range) => {}
+                    Err(Uncertain::Inaccurate) => unreachable!("a sign is never inaccurate"),
+                }
+                if let Ok(answer) = v.output(ScaleKind::Velocity) {
+                    answered += 1;
+                    within_promise(answer, &exact, &format!("case {case} step {step}: {v:?}"));
+                }
+                // x √y of the value and an earlier non-negative one.
+                let (w, ew, _) = &pool[pick(&mut rng, pool.len())];
+                if ew >= &BigRational::zero()
+                    && let Ok(answer) = v.output_times_sqrt(w, ScaleKind::Velocity)
+                {
+                    answered_roots += 1;
+                    // |answer − x√y| ≤ p |x√y| ⟺ (1 − p)² x²y ≤ answer² ≤ (1 + p)² x²y,
+                    // with the sign of x (or zero).
+                    let target = &exact * &exact * ew;
+                    let p = of(PROMISED_RELATIVE_ERROR);
+                    let one = BigRational::from_integer(1.into());
+                    let square = of(answer) * of(answer);
+                    let what = format!("case {case} step {step}: {v:?} √{w:?} = {answer}");
+                    assert!(square <= (&one + &p).pow(2) * &target, "{what}");
+                    assert!(square >= (&one - &p).pow(2) * &target, "{what}");
+                    assert!(answer == 0.0 || (answer > 0.0) == exact.is_positive(), "{what}");
                 }
                 if v.h.is_finite() && v.m.is_finite() {
                     pool.push((v, exact, plain));
@@ -407,6 +519,23 @@ mod tests {
             decided > 40_000 && close > 500 && roots > 2_000,
             "{decided} {close} {roots}"
         );
+        assert!(
+            answered > 30_000 && answered_roots > 5_000,
+            "{answered} {answered_roots}"
+        );
+    }
+
+    /// An output answered in `fast` is within the promised relative error of
+    /// its exact value (an exact zero answered `+0.0`).
+    fn within_promise(answer: f64, exact: &BigRational, what: &str) {
+        let error = (of(answer) - exact).abs();
+        assert!(
+            error <= exact.abs() * of(PROMISED_RELATIVE_ERROR),
+            "{what}: {answer} is off by more than the promise"
+        );
+        if exact.is_zero() {
+            assert_eq!(answer.to_bits(), 0.0f64.to_bits(), "{what}");
+        }
     }
 
     impl Filtered {

@@ -32,6 +32,6 @@ mod surd;
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, OutOfRange, Undecided};
-pub(crate) use filtered::{Filtered, Uncertain};
+pub(crate) use filtered::{Filtered, Uncertain, measure_against};
 pub(crate) use fraction::Fraction;
 pub(crate) use surd::{Radical, Surd};

@@ -107,6 +107,12 @@ struct StageLabels {
     stage: String,
 }
 
+/// Why a `fast` answer went to the exact evaluation.
+#[derive(Debug, Clone, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct ReasonLabels {
+    reason: String,
+}
+
 /// Marks a load-shedding answer for the metrics middleware.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Shed;
@@ -252,11 +258,20 @@ impl Telemetry {
             "Impacts settled by each stage of the adaptive exact evaluation, since start",
             settled,
         );
-        let escalated = Counter::<u64>::default();
-        escalated.inc_by(crate::impact::fast_decisions_escalated());
+        let escalated = Family::<ReasonLabels, Counter>::default();
+        for (reason, count) in [
+            ("decision", crate::impact::fast_decisions_escalated()),
+            ("accuracy", crate::impact::fast_outputs_escalated()),
+        ] {
+            escalated
+                .get_or_create(&ReasonLabels {
+                    reason: reason.to_owned(),
+                })
+                .inc_by(count);
+        }
         stages.register(
             "fast_escalated",
-            "Fast answers sent to the exact evaluation because a decision was too close to its tie for the f64 error bound, since start",
+            "Fast answers sent to the exact evaluation since start, by reason: a decision too close to its tie, or an output whose f64 error bound exceeded the promised error (2^-32 of the larger of its magnitude and its scale)",
             escalated,
         );
         let _ = prometheus_client::encoding::text::encode_registry(&mut text, &self.0.registry);

@@ -4,6 +4,7 @@
 //! `src/model/contact.rs` are written in.
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
+use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::input::{BodiesImpact, Lamina, Law};
@@ -163,6 +164,25 @@ impl Case for BodiesImpact {
     /// Body B's outputs only when there is a body B.
     fn answers(&self, output: Output) -> bool {
         self.b.is_some() || !BODY_OUTPUTS[1].contains(&output)
+    }
+
+    fn error_scales(&self) -> ErrorScales {
+        let p = self.contact.point;
+        let body = |scales: ScalesOf, b: &Lamina| {
+            let r = [p[0] - b.position[0], p[1] - b.position[1]];
+            scales.body(
+                b.mass,
+                &b.velocity,
+                &[b.angular_velocity],
+                r[0].mul_add(r[0], r[1] * r[1]).sqrt(),
+            )
+        };
+        let scales = body(ScalesOf::new(), &self.a);
+        match &self.b {
+            Some(b) => body(scales, b),
+            None => scales,
+        }
+        .scales()
     }
 
     fn describe(&self) -> &'static str {

@@ -54,6 +54,7 @@ mod torsional;
 use std::convert::Infallible;
 use std::fmt;
 
+use crate::accuracy::ErrorScales;
 use crate::arith::{
     Bounded, Compensated, Filtered, OutOfRange, Radical, Surd, Uncertain, Undecided, Unsettled,
 };
@@ -186,6 +187,9 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     }
     /// What the impact is, in words (for messages).
     fn describe(&self) -> &'static str;
+    /// The scales `fast`'s promised error is measured against
+    /// ([`crate::accuracy`]), from the inputs alone.
+    fn error_scales(&self) -> ErrorScales;
     /// One output's value in an outcome (a number is `NaN` when it was not
     /// computed), `None` for an output of another case.
     #[inline]
@@ -229,7 +233,7 @@ pub fn solve_in<C: Case>(
             let fixed = impact.fix(&[]);
             let in_range = arithmetic == Arithmetic::Fast && impact.all_in_fast_range();
             let mut outcome = C::Outcome::default();
-            let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
+            let (result, stage) = evaluate_case(impact, &fixed, outputs, arithmetic, in_range, &mut outcome);
             (result.map(|()| outcome), stage)
         },
     )
@@ -286,10 +290,25 @@ impl<C: Case> Solver<C> {
         let in_range = self.arithmetic == Arithmetic::Fast
             && self.fixed_in_range
             && all_in_fast_range(impact, &self.swept);
-        impact
-            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range, out)
-            .0
+        evaluate_case(impact, &self.fixed, self.outputs, self.arithmetic, in_range, out).0
     }
+}
+
+/// [`Case::evaluate`], the impact's error scales set first where the f64
+/// evaluation will run.
+#[inline(always)]
+fn evaluate_case<C: Case>(
+    impact: &C,
+    fixed: &C::Fixed,
+    outputs: Outputs,
+    arithmetic: Arithmetic,
+    in_range: bool,
+    out: &mut C::Outcome,
+) -> (Result<()>, Stage) {
+    if in_range || arithmetic == Arithmetic::Plain {
+        crate::arith::measure_against(&impact.error_scales());
+    }
+    impact.evaluate(fixed, outputs, arithmetic, in_range, out)
 }
 
 /// The largest and smallest magnitudes (2^±200) the fast evaluation takes:
@@ -359,7 +378,11 @@ fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
     match model.run::<Filtered>(out) {
         Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Undecided(Uncertain::Close)) => {
-            FAST_ESCALATED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            FAST_ESCALATED[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            adaptive(model, out)
+        }
+        Err(Fail::Undecided(Uncertain::Inaccurate)) => {
+            FAST_ESCALATED[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             adaptive(model, out)
         }
         // A refusal of the model is rare and final: the exact stages confirm
@@ -378,15 +401,24 @@ fn unfiltered_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, St
     }
 }
 
-/// `fast` answers sent to the exact stages because a decision was within its
-/// error bound of a tie, since the process started.
-static FAST_ESCALATED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+/// `fast` answers sent to the exact stages since the process started: `[0]`
+/// for a decision within its error bound of a tie, `[1]` for an output whose
+/// error bound exceeded the promised error.
+static FAST_ESCALATED: [std::sync::atomic::AtomicU64; 2] =
+    [const { std::sync::atomic::AtomicU64::new(0) }; 2];
 
 /// How many `fast` answers were sent to the exact stages because a decision
 /// (a regime, a branch, a refusal) was too close to its tie for the f64
 /// error bound, since the process started.
 pub fn fast_decisions_escalated() -> u64 {
-    FAST_ESCALATED.load(std::sync::atomic::Ordering::Relaxed)
+    FAST_ESCALATED[0].load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// How many `fast` answers were sent to the exact stages because an output's
+/// f64 error bound exceeded [`crate::PROMISED_RELATIVE_ERROR`] (a cancelling
+/// output, a nearly singular contact), since the process started.
+pub fn fast_outputs_escalated() -> u64 {
+    FAST_ESCALATED[1].load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// The model of one validated impact, ready to run in any field.

@@ -2,6 +2,7 @@
 //! one tangential law (the normal, oblique and tangential endpoints).
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
+use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::input::{Law, PlanarBody, PlanarImpact};
@@ -320,6 +321,20 @@ impl Case for PlanarImpact {
             .chain([v.normal, v.tangential, v.angular])
             .chain(self.law.coefficients())
             .all(super::in_fast_range)
+    }
+
+    fn error_scales(&self) -> ErrorScales {
+        let v = &self.velocity;
+        let (mass, arm) = match self.body {
+            PlanarBody::PointMass { mass } => (mass, 0.0),
+            PlanarBody::Rigid { mass, contact, .. } => {
+                let (c, d) = (contact.tangential_offset, contact.normal_offset);
+                (mass, c.mul_add(c, d * d).sqrt())
+            }
+        };
+        ScalesOf::new()
+            .body(mass, &[v.normal, v.tangential], &[v.angular], arm)
+            .scales()
     }
 
     fn describe(&self) -> &'static str {

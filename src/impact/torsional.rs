@@ -1,6 +1,7 @@
 //! The torsional case (section 4): spin about the contact normal.
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
+use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::input::TorsionalImpact;
@@ -69,6 +70,17 @@ impl Case for TorsionalImpact {
         TorsionalFriction => Some(&mut impact.torsional_friction),
         PitchRadius => Some(&mut impact.pitch_radius),
     });
+
+    fn error_scales(&self) -> ErrorScales {
+        ScalesOf::new()
+            .body(
+                self.mass,
+                &[self.normal_velocity],
+                &[self.spin],
+                self.pitch_radius,
+            )
+            .scales()
+    }
 
     fn describe(&self) -> &'static str {
         "a torsional impact"

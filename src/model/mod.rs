@@ -61,11 +61,12 @@ pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
     })
 }
 
-/// The output correctly rounded (an exact zero as `+0.0`), or its refusal
-/// when it rounds beyond the f64 range.
+/// The output correctly rounded (an exact zero as `+0.0`; in `fast`, within
+/// the promised error, [`crate::accuracy`]), or its refusal when it rounds
+/// beyond the f64 range.
 #[inline(always)]
 pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
-    let v = x.round().map_err(Fail::Undecided)?;
+    let v = x.round_output(output.scale_kind()).map_err(Fail::Undecided)?;
     if v.is_finite() {
         Ok(v)
     } else {
@@ -76,7 +77,9 @@ pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
 /// `x √y` correctly rounded, or its refusal beyond the f64 range.
 #[inline(always)]
 pub(crate) fn out_times_sqrt<N: Field>(output: Output, x: &N, y: &N) -> Exact<N, f64> {
-    let v = x.round_times_sqrt(y).map_err(Fail::Undecided)?;
+    let v = x
+        .round_output_times_sqrt(y, output.scale_kind())
+        .map_err(Fail::Undecided)?;
     if v.is_finite() {
         Ok(v)
     } else {

@@ -210,3 +210,57 @@ pub fn refusal_kind(e: &ImpactError) -> Option<Refusal> {
         _ => None,
     }
 }
+
+/// What [`check_promise`] saw over a set of impacts.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct PromiseTally {
+    /// Impacts both modes answered.
+    pub impacts: usize,
+    /// Of those, the `fast` answers the exact stages gave.
+    pub escalated: usize,
+    /// Numbers compared.
+    pub outputs: usize,
+    /// The largest `|fast − exact| / max(|exact|, S)` seen.
+    pub worst: f64,
+}
+
+/// Checks `fast`'s promise on one impact: every number of its answer within
+/// `PROMISED_RELATIVE_ERROR · max(|x|, S)` of the exact mode's correctly
+/// rounded `x` (plus that rounding, an ulp of `x` at most), `S` the scale of
+/// the output's unit ([`restitution::ErrorScales`]). Refusals are compared
+/// by each survey's own checks.
+pub fn check_promise<C: restitution::Case>(impact: &C, tally: &mut PromiseTally) {
+    use restitution::impact::{Arithmetic, Stage, solve_in};
+    use restitution::quantity::Value;
+    let (fast, stage) = solve_in(impact, restitution::Outputs::ALL, Arithmetic::Fast);
+    let (exact, _) = solve_in(impact, restitution::Outputs::ALL, Arithmetic::Exact);
+    let (Ok(fast), Ok(exact)) = (fast, exact) else {
+        return;
+    };
+    tally.impacts += 1;
+    tally.escalated += usize::from(stage != Stage::Fast);
+    let scales = impact.error_scales();
+    for &output in C::OUTPUTS {
+        let (Some(Value::Number(h)), Some(Value::Number(x))) =
+            (C::output(&fast, output), C::output(&exact, output))
+        else {
+            continue;
+        };
+        if h.is_nan() && x.is_nan() {
+            continue; // not an output of this impact
+        }
+        let measure = x.abs().max(scales.of_output(output));
+        let error = (h - x).abs();
+        let allowed = restitution::PROMISED_RELATIVE_ERROR * measure + 2.0 * f64::EPSILON * x.abs();
+        assert!(
+            error <= allowed,
+            "{output:?}: fast {h:e}, exact {x:e}: {:.3e} of max(|x|, S = {:e}), past the promise: {impact:?}",
+            error / measure,
+            scales.of_output(output)
+        );
+        tally.outputs += 1;
+        if measure > 0.0 {
+            tally.worst = tally.worst.max(error / measure);
+        }
+    }
+}

@@ -972,6 +972,23 @@ fn measure(errors: &mut Errors, s: &Scene, impact: &BodiesImpact, o: &BodiesOutc
     );
 }
 
+/// `fast`'s promised error (docs/accuracy.md) on every scene of the set,
+/// near-singular, heavy-partner and on-the-cap ones included: each number
+/// within `2⁻³² max(|x|, S)` of the correctly rounded exact answer, or the
+/// impact escalated.
+#[test]
+fn fast_keeps_its_promised_error_on_every_scene() {
+    let mut tally = crate::common::accuracy::PromiseTally::default();
+    for Solved { case, .. } in solved() {
+        crate::common::accuracy::check_promise(&case.impact, &mut tally);
+    }
+    println!("two bodies, fast's promise: {tally:?}");
+    assert!(
+        tally.impacts > 1000 * SIZE && tally.outputs > 20 * tally.impacts,
+        "{tally:?}"
+    );
+}
+
 /// Measures `fast` on `solved`: the largest errors, and the counts
 /// (measured, refused alike, at a cap); any regime or refusal unlike the reference fails.
 fn fast_errors<'a>(solved: impl Iterator<Item = &'a Solved>) -> Errors {

@@ -17,7 +17,9 @@
 //! exactly zero. `report_*` (ignored) runs a larger grid and prints the tables.
 
 use crate::common::Rng;
-use crate::common::accuracy::{BOUND_ULPS, Errors, Inputs, compare, kappa, refusal_kind};
+use crate::common::accuracy::{
+    BOUND_ULPS, Errors, Inputs, PromiseTally, check_promise, compare, kappa, refusal_kind,
+};
 use crate::common::reference::{self as reference, Outcome, Q, Refusal, q};
 use num_traits::{Signed, Zero};
 use restitution::impact::{Arithmetic, Stage, solve_in};
@@ -215,6 +217,8 @@ struct Tally {
     rational: usize,
     /// Cases of a set on a decision boundary (each decided by `fast` as the reference).
     at_boundary: usize,
+    /// `fast`'s promised error, checked on every case both modes answer.
+    promise: PromiseTally,
 }
 
 /// Checks both modes on one case. `boundary`: the set sits on a decision
@@ -223,6 +227,7 @@ fn check(name: &str, case: &Case, boundary: bool, tally: &mut Tally, errors: &mu
     let impact = case.impact();
     let reference = case.reference();
     let (exact_answer, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
+    check_promise(&impact, &mut tally.promise);
     tally.cases += 1;
     tally.compensated += usize::from(stage == Stage::Compensated);
     tally.rational += usize::from(stage == Stage::Rational);
@@ -535,6 +540,8 @@ fn exact_settles_typical_scenes_in_the_compensated_stage() {
     assert!(tally.answered > n / 2, "{tally:?}");
     assert!(tally.compensated * 100 >= n * 99, "{tally:?}");
     assert_eq!(tally.rational, 0, "{tally:?}");
+    // Every answered case's numbers were checked against fast's promise.
+    assert_eq!(tally.promise.impacts, tally.answered, "{tally:?}");
 }
 
 #[test]
@@ -600,6 +607,7 @@ fn exact_zeros_are_positive_zero() {
 fn exact_torsional_is_correctly_rounded_under_stress() {
     let mut rng = Rng::new(108);
     let mut rational = 0;
+    let mut promise = PromiseTally::default();
     for i in 0..300 {
         let wide = i % 2 == 0;
         let mag = |rng: &mut Rng| {
@@ -645,6 +653,7 @@ fn exact_torsional_is_correctly_rounded_under_stress() {
             ("T_L", loss_x),
         ];
         let (answer, stage) = solve_in(&impact, Outputs::ALL, Arithmetic::Exact);
+        check_promise(&impact, &mut promise);
         rational += usize::from(stage == Stage::Rational);
         match answer {
             Ok(o) => {
@@ -677,7 +686,8 @@ fn exact_torsional_is_correctly_rounded_under_stress() {
             assert!(o.final_spin.is_finite() && o.energy.unwrap().loss.is_finite());
         }
     }
-    println!("torsional stress: {rational} of 300 needed rationals");
+    println!("torsional stress: {rational} of 300 needed rationals; fast's promise: {promise:?}");
+    assert!(promise.impacts > 100 && promise.outputs > 1000, "{promise:?}");
 }
 
 #[test]
