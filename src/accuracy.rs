@@ -41,9 +41,8 @@ pub struct ErrorScales {
 }
 
 impl ErrorScales {
-    /// Infinite scales: no promise (spatial impacts, for now), so `fast`
-    /// answers its f64 value whatever its bound, as long as the bound is a
-    /// number.
+    /// Infinite scales: no promise, so the f64 evaluation answers its value
+    /// whatever its bound (the measurement mode `Arithmetic::Unpromised`).
     pub const UNPROMISED: ErrorScales = ErrorScales {
         dimensionless: f64::INFINITY,
         velocity: f64::INFINITY,
@@ -106,6 +105,14 @@ impl ScalesOf {
         if arm > 0.0 {
             self.min_arm = self.min_arm.min(arm);
         }
+        self.max_arm = self.max_arm.max(arm);
+        self
+    }
+
+    /// A lever arm of a couple that is no body's (a pitch radius): it
+    /// scales angular impulses only.
+    #[inline(always)]
+    pub(crate) fn lever(mut self, arm: f64) -> Self {
         self.max_arm = self.max_arm.max(arm);
         self
     }

@@ -16,7 +16,19 @@
 //! - (F1) `|x| ≤ M`,
 //! - (F2) `|x − h| ≤ λ u M`,
 //!
-//! each up to the slack described below. Each operation's rule (at the
+//! each up to the slack described below. Beside them it carries `E`, a
+//! running bound formed from the values as they are computed (Wilkinson's
+//! running error analysis: `E_x + E_y + u |h|` for a sum,
+//! `(|h_x| + E_x) E_y + |h_y| E_x + u |h|` for a product, and so on):
+//!
+//! - (F3) `|x − h| ≤ E`.
+//!
+//! Decisions read (F2), whose `λ` the compiler folds; outputs read the
+//! smaller of (F2) and (F3). (F2)'s `M` multiplies the conditioning of each
+//! factor along a chain of products and quotients, where (F3) adds their
+//! relative errors, so a long chain (a contact in space) is bounded by (F3)
+//! far more tightly.
+//! Each operation's rule (at the
 //! operation) derives its `λ` from its operands' `λ` alone, never from the
 //! values (an exact zero is told by `M = 0`, an uncertain quotient by
 //! `M = ∞`): inputs have `λ = 0`, so along each path of the model every `λ`
@@ -70,6 +82,33 @@ pub(crate) enum Uncertain {
 /// so `|x − h| ≤ (p/2) / (1 − p/2) max(|x|, S)`, within [`PROMISED_RELATIVE_ERROR`].
 const ACCEPTED_RELATIVE_BOUND: f64 = 0.5 * PROMISED_RELATIVE_ERROR;
 
+/// The factor applied to the running bound `E` where it is read: covers the
+/// roundings of `E`'s own few operations per step (below `(1 + u)⁴` each,
+/// along fewer than 4096 steps) and `|h_x / h_y| ≤ |q| (1 + u)` in quotients.
+const RUNNING_SLACK: f64 = 1.0 + 1.0 / 1024.0;
+
+/// The most a rounding in the subnormal range adds beside `u |h|`: half the
+/// smallest subnormal, rounded up to it.
+const UNDERFLOW: f64 = f64::from_bits(1);
+
+/// `|x y − h_x h_y| ≤ (|h_x| + E_x) E_y + |h_y| E_x`, plus `E_z` of an added
+/// term.
+#[inline(always)]
+fn product_error(x: &Filtered, y: &Filtered, e_z: f64) -> f64 {
+    (x.h.abs() + x.e).mul_add(y.e, y.h.abs().mul_add(x.e, e_z))
+}
+
+/// A rounded result's running bound: the operands' error `carried` plus the
+/// rounding `u |h|` and an underflow; an exact zero (`M = 0`) has none.
+#[inline(always)]
+fn rounded_error(m: f64, carried: f64, h: f64) -> f64 {
+    if m == 0.0 {
+        0.0
+    } else {
+        carried + U.mul_add(h.abs(), UNDERFLOW)
+    }
+}
+
 thread_local! {
     /// The scales of the impact being evaluated ([`ErrorScales::by_kind`]),
     /// set by [`measure_against`] before each `fast` evaluation; zeros (the
@@ -77,8 +116,9 @@ thread_local! {
     static SCALES: std::cell::Cell<[f64; 6]> = const { std::cell::Cell::new([0.0; 6]) };
 }
 
-/// Sets the scales the outputs of the next `fast` evaluations on this thread
-/// are measured against.
+/// Sets the scales the outputs of the next `fast` evaluation on this thread
+/// are measured against: called by the one function that runs it,
+/// `impact::fast_or_exact`, with the impact's own scales.
 #[inline(always)]
 pub(crate) fn measure_against(scales: &ErrorScales) {
     SCALES.with(|s| s.set(scales.by_kind()));
@@ -111,6 +151,8 @@ pub(crate) struct Filtered {
     m: f64,
     /// `λ` in (F2).
     lambda: f64,
+    /// `E`: a running bound of `|x − h|` (F3), formed from the values.
+    e: f64,
 }
 
 impl Filtered {
@@ -121,6 +163,7 @@ impl Filtered {
             h: x,
             m: if x == 0.0 { 0.0 } else { floored(x.abs()) },
             lambda: 0.0,
+            e: 0.0,
         }
     }
 
@@ -151,6 +194,8 @@ impl Filtered {
             h,
             m,
             lambda: max(self.lambda, o.lambda) + 1.0,
+            // A sum does not underflow: its rounding is at most u |h|.
+            e: (self.e + o.e) + U * h.abs(),
         }
     }
 
@@ -169,10 +214,13 @@ impl Filtered {
     /// exact zero): `λ_p = λ_x + λ_y + 1`.
     #[inline(always)]
     pub(crate) fn mul(&self, o: &Self) -> Self {
+        let h = self.h * o.h;
+        let m = product_magnitude(self.m, o.m);
         Filtered {
-            h: self.h * o.h,
-            m: product_magnitude(self.m, o.m),
+            h,
+            m,
             lambda: self.lambda + o.lambda + 1.0,
+            e: rounded_error(m, product_error(self, o, 0.0), h),
         }
     }
 
@@ -195,6 +243,7 @@ impl Filtered {
             h,
             m,
             lambda: max(self.lambda + b.lambda, c.lambda) + 1.0,
+            e: rounded_error(m, product_error(self, b, c.e), h),
         }
     }
 
@@ -224,10 +273,19 @@ impl Filtered {
         } else {
             f64::INFINITY
         };
+        // (E_x + |q| E_y) / (|h_y| − E_y): an uncertain divisor (or a NaN)
+        // leaves no finite bound.
+        let low = o.h.abs() - o.e;
+        let carried = if low > 0.0 {
+            q.abs().mul_add(o.e, self.e) / low
+        } else {
+            f64::INFINITY
+        };
         Filtered {
             h: q,
             m,
             lambda: max(self.lambda, o.lambda) + 2.0,
+            e: rounded_error(m, carried, q),
         }
     }
 
@@ -245,6 +303,11 @@ impl Filtered {
                 floored(rounded.abs() * ONE_PLUS_2U)
             },
             lambda: 1.0,
+            e: if num == 0.0 {
+                0.0
+            } else {
+                rounded_error(1.0, 0.0, rounded)
+            },
         }
     }
 
@@ -260,6 +323,7 @@ impl Filtered {
                 h: s,
                 m: 0.0,
                 lambda: self.lambda + 2.0,
+                e: 0.0,
             });
         }
         let low = (self.h - (self.lambda * (U * SLACK)) * self.m) * (1.0 - 4.0 * U);
@@ -270,10 +334,18 @@ impl Filtered {
         if low < FLOOR {
             return Err(Uncertain::Close);
         }
+        // |√x − √h| = |x − h| / (√x + √h) ≤ E / (√(h − E) + √h), and at
+        // most √E however much of h is uncertain (a NaN E stays a NaN).
+        let carried = if self.e < self.h {
+            self.e / ((self.h - self.e).sqrt() + s)
+        } else {
+            self.e.sqrt()
+        };
         Ok(Filtered {
             h: s,
             m: floored(self.m * (1.0 + 4.0 * U) / (low.sqrt() * (1.0 - 4.0 * U))),
             lambda: self.lambda + 2.0,
+            e: carried + U * s,
         })
     }
 
@@ -293,7 +365,7 @@ impl Filtered {
         }
         // An exact zero or input has a zero bound; a NaN or infinite bound
         // compares false.
-        let bound = (self.lambda * (U * SLACK)) * self.m;
+        let bound = self.error_bound();
         if bound <= ACCEPTED_RELATIVE_BOUND * max(v.abs(), scale_of(kind)) {
             Ok(v)
         } else {
@@ -320,8 +392,8 @@ impl Filtered {
             // An exact zero factor: the exact zero, `+0.0`.
             return Ok(v);
         }
-        let error_x = (self.lambda * (U * SLACK)) * self.m;
-        let error_y = (y.lambda * (U * SLACK)) * y.m;
+        let error_x = self.error_bound();
+        let error_y = y.error_bound();
         let bound = if y.h > error_y && self.h != 0.0 {
             v.abs() * (error_x / self.h.abs() + error_y / y.h + 2.0 * U)
         } else {
@@ -334,6 +406,16 @@ impl Filtered {
         } else {
             Err(Uncertain::Inaccurate)
         }
+    }
+
+    /// A bound of `|x − h|`: the smaller of the static (F2) and the running
+    /// (F3) one, each grown by its slack (a NaN running bound leaves the
+    /// static one).
+    #[inline(always)]
+    fn error_bound(&self) -> f64 {
+        let fixed = (self.lambda * (U * SLACK)) * self.m;
+        let running = self.e * RUNNING_SLACK;
+        if running < fixed { running } else { fixed }
     }
 
     /// The exact value's sign, unless the bound cannot decide it.
@@ -393,6 +475,9 @@ mod tests {
             error <= of(v.lambda * U * v.m * SLACK),
             "{what}: |x − h| > λuM: {v:?}"
         );
+        if v.e.is_finite() {
+            assert!(error <= of(v.e * RUNNING_SLACK), "{what}: |x − h| > E: {v:?}");
+        }
         if v.m == 0.0 {
             assert!(
                 exact.is_zero() && v.h == 0.0,

@@ -14,8 +14,12 @@ use crate::scene::{Contact, ContactVelocity, PlanarVelocity};
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum PrecisionDto {
-    /// Plain f64 closed forms with the solver's special paths: fastest; the
-    /// error bound relative to the terms each output combines is in docs/accuracy.md.
+    /// The f64 closed forms, every decision exact, and every number within
+    /// 2⁻³² (about 2.3e-10) of max(|exact value|, S), S the scale of the
+    /// output's unit in the impact (a velocity, spin, impulse or energy from
+    /// the inputs; 1 for a ratio: docs/accuracy.md); where the f64 error
+    /// bound cannot show that, the exact stages answer (the metric
+    /// `restitution_fast_escalated_total` counts them).
     #[default]
     Fast,
     /// Every number is the correctly rounded f64 of the model's exact value for

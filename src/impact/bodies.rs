@@ -225,6 +225,7 @@ impl Case for BodiesImpact {
                 evaluate(
                     arithmetic,
                     in_range,
+                    || self.error_scales(),
                     Pair {
                         impact: &impact,
                         outputs,

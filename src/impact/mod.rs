@@ -107,13 +107,24 @@ pub enum Arithmetic {
     Unfiltered,
     /// Exact fractions alone (no earlier stage).
     Rational,
+    /// `Fast` without its promise on the numbers (every output accepted
+    /// whatever its error bound; decisions still exact): what the promise's
+    /// surveys show would break without the output test.
+    Unpromised,
 }
 
 impl Arithmetic {
+    /// Whether the f64 evaluation answers only inside the fast range.
+    fn checks_range(self) -> bool {
+        matches!(self, Arithmetic::Fast | Arithmetic::Unpromised)
+    }
+
     /// The stage that reports a refusal made before any arithmetic (input validation).
     pub(crate) fn validating_stage(self) -> Stage {
         match self {
-            Arithmetic::Fast | Arithmetic::Plain | Arithmetic::Unfiltered => Stage::Fast,
+            Arithmetic::Fast | Arithmetic::Plain | Arithmetic::Unfiltered | Arithmetic::Unpromised => {
+                Stage::Fast
+            }
             Arithmetic::Exact => Stage::Compensated,
             Arithmetic::Rational => Stage::Rational,
         }
@@ -231,9 +242,9 @@ pub fn solve_in<C: Case>(
         #[inline(always)]
         || {
             let fixed = impact.fix(&[]);
-            let in_range = arithmetic == Arithmetic::Fast && impact.all_in_fast_range();
+            let in_range = arithmetic.checks_range() && impact.all_in_fast_range();
             let mut outcome = C::Outcome::default();
-            let (result, stage) = evaluate_case(impact, &fixed, outputs, arithmetic, in_range, &mut outcome);
+            let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
             (result.map(|()| outcome), stage)
         },
     )
@@ -287,28 +298,12 @@ impl<C: Case> Solver<C> {
     /// Solves `impact` into `out` (left as it was on a refusal).
     #[inline(always)]
     pub fn solve_into(&self, impact: &C, out: &mut C::Outcome) -> Result<()> {
-        let in_range = self.arithmetic == Arithmetic::Fast
-            && self.fixed_in_range
-            && all_in_fast_range(impact, &self.swept);
-        evaluate_case(impact, &self.fixed, self.outputs, self.arithmetic, in_range, out).0
+        let in_range =
+            self.arithmetic.checks_range() && self.fixed_in_range && all_in_fast_range(impact, &self.swept);
+        impact
+            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range, out)
+            .0
     }
-}
-
-/// [`Case::evaluate`], the impact's error scales set first where the f64
-/// evaluation will run.
-#[inline(always)]
-fn evaluate_case<C: Case>(
-    impact: &C,
-    fixed: &C::Fixed,
-    outputs: Outputs,
-    arithmetic: Arithmetic,
-    in_range: bool,
-    out: &mut C::Outcome,
-) -> (Result<()>, Stage) {
-    if in_range || arithmetic == Arithmetic::Plain {
-        crate::arith::measure_against(&impact.error_scales());
-    }
-    impact.evaluate(fixed, outputs, arithmetic, in_range, out)
 }
 
 /// The largest and smallest magnitudes (2^±200) the fast evaluation takes:
@@ -336,19 +331,22 @@ fn all_in_fast_range<C: Case>(impact: &C, inputs: &[Input]) -> bool {
 
 /// Evaluates a validated impact: `model` is the model instantiated in each
 /// field. `Fast` answers in f64 when `in_range` and the f64 evaluation stays
-/// in range, else as `Exact`.
+/// in range (its outputs within the promised error of `scales`, the
+/// impact's [`Case::error_scales`]), else as `Exact`.
 #[inline(always)]
 pub(crate) fn evaluate<T>(
     arithmetic: Arithmetic,
     in_range: bool,
+    scales: impl FnOnce() -> ErrorScales,
     model: impl Model<T>,
     out: &mut T,
 ) -> (Result<()>, Stage) {
     match arithmetic {
-        Arithmetic::Fast if in_range => fast_or_exact(&model, out),
-        Arithmetic::Plain => fast_or_exact(&model, out),
+        Arithmetic::Fast if in_range => fast_or_exact(&model, scales(), out),
+        Arithmetic::Plain => fast_or_exact(&model, scales(), out),
+        Arithmetic::Unpromised if in_range => fast_or_exact(&model, ErrorScales::UNPROMISED, out),
         Arithmetic::Unfiltered => unfiltered_or_exact(&model, out),
-        Arithmetic::Fast | Arithmetic::Exact => adaptive(&model, out),
+        Arithmetic::Fast | Arithmetic::Unpromised | Arithmetic::Exact => adaptive(&model, out),
         Arithmetic::Rational => rational(&model, out),
     }
 }
@@ -374,8 +372,11 @@ fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
 /// range: an output that overflows, a decision on an infinity or a NaN) or
 /// refuses the impact. Every decision of a `fast` answer is the exact one.
 #[inline(always)]
-fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
-    match model.run::<Filtered>(out) {
+fn fast_or_exact<T>(model: &impl Model<T>, scales: ErrorScales, out: &mut T) -> (Result<()>, Stage) {
+    // The only place the f64 evaluation runs: its outputs are measured
+    // against this impact's scales, whoever called.
+    crate::arith::measure_against(&scales);
+    match run_fast(model, out) {
         Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Undecided(Uncertain::Close)) => {
             FAST_ESCALATED[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -389,6 +390,16 @@ fn fast_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
         // it and give its payload exactly.
         Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => adaptive(model, out),
     }
+}
+
+/// The model in `Filtered`: inlined in release; in a frame of its own in
+/// debug builds, where the whole model inlined takes about a megabyte of
+/// stack (no slot is shared at opt-level 0) that would otherwise stay under
+/// the exact stages' frames and overflow a 2 MiB thread.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn run_fast<T>(model: &impl Model<T>, out: &mut T) -> Exact<Filtered, ()> {
+    model.run::<Filtered>(out)
 }
 
 /// The f64 answer with the decisions f64 takes (no error bound), or the exact

@@ -379,7 +379,13 @@ impl Case for PlanarImpact {
         let refused = |e| (Err(e), stage);
         match self.body {
             PlanarBody::PointMass { mass } => match self.point_mass_inputs(mass) {
-                Ok(mass) => evaluate(arithmetic, in_range, Point { mass, outputs }, out),
+                Ok(mass) => evaluate(
+                    arithmetic,
+                    in_range,
+                    || self.error_scales(),
+                    Point { mass, outputs },
+                    out,
+                ),
                 Err(e) => refused(e),
             },
             PlanarBody::Rigid { .. } => {
@@ -400,7 +406,13 @@ impl Case for PlanarImpact {
                     None => self.law.validate(),
                 };
                 match law {
-                    Ok(law) => evaluate(arithmetic, in_range, Rigid { scene, law, outputs }, out),
+                    Ok(law) => evaluate(
+                        arithmetic,
+                        in_range,
+                        || self.error_scales(),
+                        Rigid { scene, law, outputs },
+                        out,
+                    ),
                     Err(e) => refused(e),
                 }
             }

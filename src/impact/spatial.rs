@@ -5,7 +5,7 @@
 use std::cmp::Ordering;
 
 use super::{Arithmetic, Case, Model, Stage, evaluate};
-use crate::accuracy::ErrorScales;
+use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::input::{Law, RigidBody, SpatialImpact, Twist};
@@ -294,13 +294,21 @@ impl Case for SpatialImpact {
             && (self.torsion.is_some() || output != Output::TorsionalRegime)
     }
 
-    /// No promise yet in space ([`ErrorScales::UNPROMISED`]): the static
-    /// bound of the f64 evaluation, carried through the contact-space
-    /// inverse, exceeds `2⁻³²` of the scale on nearly every spatial impact
-    /// (2,233 of 2,280 of the reference set), so a promise would send them
-    /// all to the exact stages.
+    /// Each body's velocity and spin components with its lever arm `|C − G|`;
+    /// the pitch radius of a twist law is a lever arm of the couple.
     fn error_scales(&self) -> ErrorScales {
-        ErrorScales::UNPROMISED
+        let c = self.contact.point;
+        let mut scales = ScalesOf::new();
+        for b in self.bodies() {
+            let r = [0, 1, 2].map(|i| c[i] - b.position[i]);
+            let arm = r[0].mul_add(r[0], r[1].mul_add(r[1], r[2] * r[2])).sqrt();
+            scales = scales.body(b.mass, &b.velocity, &b.angular_velocity, arm);
+        }
+        match &self.torsion {
+            Some(twist) => scales.lever(twist.pitch_radius),
+            None => scales,
+        }
+        .scales()
     }
 
     fn describe(&self) -> &'static str {
@@ -341,6 +349,7 @@ impl Case for SpatialImpact {
                 evaluate(
                     arithmetic,
                     in_range,
+                    || self.error_scales(),
                     Space {
                         impact: &impact,
                         outputs,

@@ -101,6 +101,7 @@ impl Case for TorsionalImpact {
             Ok(torsion) => evaluate(
                 arithmetic,
                 in_range,
+                || self.error_scales(),
                 TorsionModel {
                     torsion,
                     energy: outputs.energy,

@@ -17,6 +17,7 @@ mod http;
 mod invariants;
 mod paper;
 mod precision;
+mod promise;
 mod reference;
 mod robustness;
 mod shutdown;

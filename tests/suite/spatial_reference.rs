@@ -1310,3 +1310,19 @@ fn fast_precision_survey() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Every number `fast` answers on the reference scenes (on the caps, on
+/// structural zeros, at 10^±100) is within `2⁻³² max(|x|, S)` of the
+/// correctly rounded exact answer, or the impact escalated.
+#[test]
+fn fast_keeps_its_promised_error_on_every_scene() {
+    let mut tally = crate::common::accuracy::PromiseTally::default();
+    for Solved { case, .. } in solved() {
+        crate::common::accuracy::check_promise(&case.impact, &mut tally);
+    }
+    println!("space, fast's promise: {tally:?}");
+    assert!(
+        tally.impacts > 500 * SIZE && tally.outputs > 20 * tally.impacts,
+        "{tally:?}"
+    );
+}

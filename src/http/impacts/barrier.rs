@@ -35,7 +35,8 @@ pub struct NormalRequest {
     /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
     #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
     pub restitution: f64,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }
@@ -68,7 +69,8 @@ pub struct ObliqueRequest {
     pub impulse_ratio: Option<f64>,
     /// The two-phase kinetic model, in place of `restitution` and a tangential law.
     pub kinetic_restitution: Option<KineticRestitutionDto>,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }
@@ -100,7 +102,8 @@ pub struct TangentialRequest {
     /// e_t: tangential coefficient of restitution (Eq 20), in [−1, 1]; −1 means no tangential impulse.
     #[schema(minimum = -1.0, maximum = 1.0, example = 0.34)]
     pub tangential_restitution: f64,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }

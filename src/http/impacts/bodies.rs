@@ -110,7 +110,8 @@ pub struct PlanarContactRequest {
     /// e_t: tangential coefficient of restitution in [−1, 1], capped by `friction`.
     #[schema(minimum = -1.0, maximum = 1.0)]
     pub tangential_restitution: Option<f64>,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }

@@ -132,7 +132,8 @@ pub struct SpatialContactRequest {
     pub tangential_restitution: Option<f64>,
     /// The twist law about the normal, if any.
     pub torsion: Option<TwistDto>,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }

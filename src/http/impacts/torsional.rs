@@ -69,7 +69,8 @@ pub struct TorsionalRequest {
     pub restitution: f64,
     /// Torsional coefficients.
     pub torsion: TorsionDto,
-    /// `fast` (default) or `exact` (correctly rounded outputs, exact regime decisions).
+    /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
+    /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }
