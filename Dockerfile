@@ -9,12 +9,14 @@ WORKDIR /src
 # Dependency layer: built from the manifests alone, cached until they change.
 # Cargo reads every target the manifest names (the [[bench]] and [[example]]
 # entries) before building anything, so benches and examples come along.
-# tests/ is not needed: the manifest names no [[test]]. The binary is built for
+# tests/ is not needed: the manifest names no [[test]]; the workspace's
+# testkit/ (the tests' helpers, a dev-dependency) is, for its manifest. The binary is built for
 # baseline x86-64 and runs its x86-64-v3 copy of the solver where the CPU has
 # AVX2 and FMA (src/kernels.rs): the image runs on any x86-64 CPU.
 COPY Cargo.toml Cargo.lock ./
 COPY benches ./benches
 COPY examples ./examples
+COPY testkit ./testkit
 RUN mkdir -p src && echo "fn main() {}" > src/main.rs && echo "" > src/lib.rs \
     && cargo build --release --locked \
     && rm -rf src

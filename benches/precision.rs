@@ -19,8 +19,7 @@ use restitution::{
     RigidBody, SpatialContact, SpatialImpact, Twist, solve,
 };
 
-#[path = "../tests/common/linear.rs"]
-mod linear;
+use restitution_testkit::linear;
 
 fn impact() -> PlanarImpact {
     PlanarImpact::rigid(

@@ -33,11 +33,7 @@ use restitution::{
     TorsionalImpact, solve,
 };
 
-#[path = "../tests/common/rng.rs"]
-mod rng;
-use rng::Rng;
-#[path = "../tests/common/linear.rs"]
-mod linear;
+use restitution_testkit::{Rng, linear};
 
 /// The planar laws the report measures (the numbers seed each law's inputs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

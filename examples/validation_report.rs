@@ -9,12 +9,7 @@
 //! cargo run --release --example validation_report
 //! ```
 
-#[allow(dead_code)]
-#[path = "../tests/common/rotation.rs"]
-mod rotation;
-#[allow(dead_code)]
-#[path = "../tests/common/validation.rs"]
-mod validation;
+use restitution_testkit::validation;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

@@ -64,8 +64,7 @@ pub mod outcome;
 pub mod plot;
 pub mod quantity;
 #[cfg(test)]
-#[path = "../tests/common/rng.rs"]
-pub(crate) mod rng;
+pub(crate) use restitution_testkit::rng;
 pub mod scene;
 pub mod sweep;
 

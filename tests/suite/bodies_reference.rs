@@ -1,5 +1,5 @@
 //! The planar two-body contact against an independent exact reference
-//! (`tests/common/bodies_reference.rs`: rationals, derived from the momentum
+//! (`testkit/src/bodies_reference.rs`: rationals, derived from the momentum
 //! equations alone, checked against the one-body reference below).
 //!
 //! The cases: pairs and single bodies against the barrier with masses, sizes,
@@ -1064,7 +1064,7 @@ fn fast_precision_survey() {
     }
 }
 
-/// The reference against the one-body reference of `tests/common/reference.rs`
+/// The reference against the one-body reference of `testkit/src/reference.rs`
 /// (a separate derivation, Gaussian elimination in the `(n, t)` frame): a body
 /// against the barrier in the four axis-aligned frames, exactly.
 #[test]

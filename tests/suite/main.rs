@@ -1,11 +1,11 @@
-//! The integration tests, in one binary: the helpers in `tests/common`
-//! compile once and the suite links once. Three tests keep binaries of their
+//! The integration tests, in one binary that links once; their helpers are
+//! the `restitution-testkit` crate (`testkit/`), compiled once for the tests,
+//! benches and examples. Three tests keep binaries of their
 //! own: `allocation.rs` (a counting global allocator), `logging.rs` (a
 //! captured log is thread-local: alone in its process) and `kernels.rs` (CI
 //! runs its executable again against the release binary).
 
-#[path = "../common/mod.rs"]
-mod common;
+use restitution_testkit as common;
 
 mod access_log;
 mod bodies;

@@ -1,5 +1,5 @@
 //! Numerical stress suite for both precision modes against the exact rational
-//! reference (tests/common/reference.rs, Gaussian elimination, shares no code
+//! reference (testkit/src/reference.rs, Gaussian elimination, shares no code
 //! with the solver).
 //!
 //! - `exact`: every output is the correctly rounded f64 of the reference value
@@ -8,7 +8,7 @@
 //!   zero is `+0.0`, and an overflow refusal names an output whose exact value
 //!   really rounds beyond `f64::MAX`.
 //! - `fast`: never NaN, infinity or a panic; answers within [`BOUND_ULPS`] of the
-//!   scale of the terms each output combines (tests/common/accuracy.rs); regimes
+//!   scale of the terms each output combines (testkit/src/accuracy.rs); regimes
 //!   and refusals the reference's, on the decision boundaries too.
 //!
 //! The sets: magnitudes 1e-300…1e300 in every input, mixed scales, D near, at

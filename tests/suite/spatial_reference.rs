@@ -1,5 +1,5 @@
 //! The contact in space against an independent reference
-//! (`tests/common/spatial_reference.rs`: exact rationals, derived from the
+//! (`testkit/src/spatial_reference.rs`: exact rationals, derived from the
 //! momentum equations alone; sliding answers to 2⁻¹⁹⁹).
 //!
 //! The cases: pairs and single bodies against the barrier with general

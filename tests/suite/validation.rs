@@ -2,7 +2,7 @@
 //! Salman (2001) (experiment, three digitizations) and Chung & Ooi (2011)
 //! Tests 4–6 (DEM reference curves). Datasets and the model (a sphere in the
 //! planar model, computed by the sweep engine) are in
-//! `tests/common/validation.rs`; the tables and plots in `docs/validation.md`
+//! `testkit/src/validation.rs`; the tables and plots in `docs/validation.md`
 //! come from `cargo run --release --example validation_report`. Kharaz's
 //! impact is also solved through the spatial model (a sphere in space, as is
 //! and turned to arbitrary orientations) and must give the planar answers.

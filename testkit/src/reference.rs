@@ -4,7 +4,7 @@
 //! Gaussian elimination of the 3×3 momentum system (Eqs 1, 2 or 20, 3), the
 //! regimes are decided exactly, and energies are exact differences of kinetic
 //! energies. Nothing here shares code or formulas with the closed forms.
-#![allow(dead_code, clippy::needless_range_loop, clippy::too_many_arguments)]
+#![allow(clippy::needless_range_loop, clippy::too_many_arguments)]
 
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};

@@ -14,7 +14,6 @@
 //!
 //! Every decision is therefore exact, and every output is either rational or
 //! `x √y` with rational `x, y` (the components along `n̂, t̂` and `|ΔV|`).
-#![allow(dead_code)]
 
 use super::reference::{Q, q};
 use num_bigint::BigInt;

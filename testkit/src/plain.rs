@@ -2,7 +2,6 @@
 //! range check, every decision exact as in `fast`; exact arithmetic where a
 //! decision is too close to call or the f64 evaluation leaves the f64 range),
 //! called per case: what the reference and paper tests measure.
-#![allow(dead_code)]
 
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{Law, Outputs, PlanarImpact, PlanarOutcome, PlanarScene, Result};

@@ -1,8 +1,7 @@
 //! The general path: the 3×3 linear system of Eqs 1, 2 (or 20) and 3 solved
 //! by LU decomposition (nalgebra): a cross-check of the model in tests and a
-//! comparator in benchmarks (shared with them by `#[path]`); the service
+//! comparator in benchmarks; the service
 //! uses the model's closed forms.
-#![allow(dead_code)]
 
 use nalgebra::{Matrix3, Vector3};
 

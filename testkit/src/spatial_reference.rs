@@ -39,7 +39,7 @@
 //! factors of two): num-bigint's binary gcd is quadratic in the length, and
 //! reducing after every operation, as `BigRational` does, took nine tenths
 //! of the time. Elimination is fraction-free (Bareiss).
-#![allow(dead_code, clippy::needless_range_loop)]
+#![allow(clippy::needless_range_loop)]
 
 use super::bodies_reference::is_correctly_rounded_sqrt;
 use super::reference::{Q, to_f64};

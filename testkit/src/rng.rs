@@ -1,9 +1,8 @@
 //! The one deterministic generator of the tests, unit tests, benches and
 //! examples (SplitMix64), so that every random set reproduces.
 //!
-//! Included by `tests/common/mod.rs`, by the library's unit tests (`src/lib.rs`,
-//! `cfg(test)`) and by the examples, each with a `#[path]`.
-#![allow(dead_code)]
+//! Used by the tests, the library's unit tests (`src/lib.rs`, `cfg(test)`), the
+//! benches and the examples, through this crate.
 
 /// SplitMix64 (Steele, Lea and Flood 2014).
 pub struct Rng(u64);

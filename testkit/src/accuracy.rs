@@ -1,7 +1,6 @@
 //! The error measure of the fast closed forms against the exact reference:
 //! errors in ulps of each output's scale (the magnitude of the terms it
 //! combines) times the conditioning of `D`; see tests/reference.rs.
-#![allow(dead_code)]
 
 use super::Rng;
 use super::reference::{self as exact, Outcome, Q, Refusal, q, ulps};

@@ -20,7 +20,7 @@ use restitution::{
 };
 
 /// Where the data files are.
-pub const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
+pub const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data");
 
 /// How a dataset's abscissa sets the initial velocities.
 #[derive(Debug, Clone, Copy, PartialEq)]
