@@ -3,7 +3,7 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
-use super::{Arithmetic, Case, Model, Stage, evaluate};
+use super::{Arithmetic, Case, Model, Stage, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
@@ -23,6 +23,11 @@ const BODY_INPUTS: [[Input; 7]; 2] = [
 /// which then stay normal doubles.
 fn in_fast_range(x: f64) -> bool {
     x == 0.0 || (2f64.powi(-60)..=2f64.powi(60)).contains(&x.abs())
+}
+
+/// Whether every one of `values` is in this case's fast range.
+fn all_in_range(values: &[f64]) -> bool {
+    values.iter().all(|&x| in_fast_range(x))
 }
 
 impl Lamina {
@@ -208,23 +213,14 @@ impl Case for BodiesImpact {
             Ok((law, certain)) => {
                 let impact = BodiesImpact { law, ..*self };
                 let in_range = in_range
-                    && certain
-                    && self.a.values().into_iter().all(in_fast_range)
-                    && self.b.is_none_or(|b| b.values().into_iter().all(in_fast_range))
-                    && self
-                        .contact
-                        .point
-                        .into_iter()
-                        .chain(self.contact.normal)
-                        .all(in_fast_range);
-                let arithmetic = match arithmetic {
-                    // The f64 evaluation may only answer where its approach decision is certain.
-                    Arithmetic::Plain | Arithmetic::Unfiltered if !certain => Arithmetic::Exact,
-                    other => other,
-                };
-                evaluate(
+                    && all_in_range(&self.a.values())
+                    && self.b.is_none_or(|b| all_in_range(&b.values()))
+                    && all_in_range(&self.contact.point)
+                    && all_in_range(&self.contact.normal);
+                evaluate_contact(
                     arithmetic,
                     in_range,
+                    certain,
                     || self.error_scales(),
                     Pair {
                         impact: &impact,

@@ -351,6 +351,26 @@ pub(crate) fn evaluate<T>(
     }
 }
 
+/// [`evaluate`] for a contact whose approach validation decided in f64,
+/// `certain` telling whether that decision was certain: where it was not,
+/// the f64 evaluation may not answer (`Fast` goes to the exact stages, the
+/// measurement modes `Plain` and `Unfiltered` become `Exact`).
+#[inline(always)]
+pub(crate) fn evaluate_contact<T>(
+    arithmetic: Arithmetic,
+    in_range: bool,
+    certain: bool,
+    scales: impl FnOnce() -> ErrorScales,
+    model: impl Model<T>,
+    out: &mut T,
+) -> (Result<()>, Stage) {
+    let arithmetic = match arithmetic {
+        Arithmetic::Plain | Arithmetic::Unfiltered if !certain => Arithmetic::Exact,
+        other => other,
+    };
+    evaluate(arithmetic, in_range && certain, scales, model, out)
+}
+
 /// The model in exact fractions alone.
 #[inline(never)]
 fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {

@@ -4,7 +4,7 @@
 
 use std::cmp::Ordering;
 
-use super::{Arithmetic, Case, Model, Stage, evaluate};
+use super::{Arithmetic, Case, Model, Stage, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
@@ -27,6 +27,11 @@ const TENSORS: [Input; 2] = [Input::InertiaA, Input::InertiaB];
 /// twenty inputs, which then stay normal doubles.
 fn in_fast_range(x: f64) -> bool {
     x == 0.0 || (2f64.powi(-50)..=2f64.powi(50)).contains(&x.abs())
+}
+
+/// Whether every one of `values` is in this case's fast range.
+fn all_in_range(values: &[f64]) -> bool {
+    values.iter().all(|&x| in_fast_range(x))
 }
 
 impl RigidBody {
@@ -334,21 +339,13 @@ impl Case for SpatialImpact {
             Ok((law, certain)) => {
                 let impact = SpatialImpact { law, ..*self };
                 let in_range = in_range
-                    && certain
-                    && self.bodies().all(|b| b.values().into_iter().all(in_fast_range))
-                    && self
-                        .contact
-                        .point
-                        .into_iter()
-                        .chain(self.contact.normal)
-                        .all(in_fast_range);
-                let arithmetic = match arithmetic {
-                    Arithmetic::Plain | Arithmetic::Unfiltered if !certain => Arithmetic::Exact,
-                    other => other,
-                };
-                evaluate(
+                    && self.bodies().all(|b| all_in_range(&b.values()))
+                    && all_in_range(&self.contact.point)
+                    && all_in_range(&self.contact.normal);
+                evaluate_contact(
                     arithmetic,
                     in_range,
+                    certain,
                     || self.error_scales(),
                     Space {
                         impact: &impact,
