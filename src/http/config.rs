@@ -104,6 +104,16 @@ pub struct ServiceConfig {
         default_value_t = 200_000
     )]
     pub max_buffered_sweep_points: u64,
+    /// Buffered sweeps (JSON table, SVG plot) computed at once; more are
+    /// refused with 503 and Retry-After. Each holds its whole answer (a
+    /// spatial JSON table of the most points: about 220 MiB).
+    #[arg(long, env = "RESTITUTION_MAX_BUFFERED_SWEEPS", default_value_t = 4)]
+    pub max_buffered_sweeps: usize,
+    /// Streamed sweeps (CSV, NDJSON, Arrow) computed at once; more are
+    /// refused with 503 and Retry-After. Each holds a few chunks (up to about
+    /// 10 MiB for Arrow to a slow reader).
+    #[arg(long, env = "RESTITUTION_MAX_STREAMED_SWEEPS", default_value_t = 64)]
+    pub max_streamed_sweeps: usize,
     /// A streamed sweep whose client reads nothing for this long is dropped, in milliseconds.
     #[arg(long, env = "RESTITUTION_SWEEP_STALL_TIMEOUT_MS", default_value_t = 30_000)]
     pub sweep_stall_timeout_ms: u64,
@@ -164,6 +174,8 @@ impl Default for ServiceConfig {
             concurrency_limit: 512,
             max_sweep_points: 10_000_000,
             max_buffered_sweep_points: 200_000,
+            max_buffered_sweeps: 4,
+            max_streamed_sweeps: 64,
             sweep_stall_timeout_ms: 30_000,
             header_read_timeout_ms: 5_000,
             shutdown_drain_ms: 0,

@@ -228,7 +228,9 @@ pub struct AppState {
 pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
     let shared = Shared {
         config: Arc::new(config.clone()),
-        streams: state.streams,
+        streams: state
+            .streams
+            .limited(config.max_buffered_sweeps, config.max_streamed_sweeps),
         telemetry: state.telemetry.clone(),
     };
     let (router, _) = served_routes().split_for_parts();

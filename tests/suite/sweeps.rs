@@ -231,6 +231,15 @@ async fn structural_errors_are_422_problems_naming_the_member() {
             "/outputs/0",
         ),
         (
+            // A repeated output would repeat its column at every point.
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "values": [1.0]}], "outputs": ["/energy", "/energy/loss"]}),
+            "/outputs/1",
+        ),
+        (
+            json!({"case": "tangential", "base": maw_base(), "axes": [{"path": "/friction", "values": [1.0]}], "outputs": ["", ""]}),
+            "/outputs/1",
+        ),
+        (
             json!({"case": "tangential", "base": {"body": {"mass": 1.0}}, "axes": [{"path": "/friction", "values": [1.0]}]}),
             "/base/body/inertia",
         ),
@@ -1361,4 +1370,53 @@ async fn every_case_sweeps_to_the_committed_csv_bytes() {
     }
     std::fs::remove_dir_all(&scratch).ok();
     assert_eq!(compared, 2 * names.len());
+}
+
+/// Buffered and streamed sweeps each have a limit of sweeps computed at once
+/// (the memory they hold): past it, 503 with Retry-After, and the other kind
+/// is still served.
+#[tokio::test]
+async fn sweeps_past_their_kinds_limit_are_refused_with_retry_after() {
+    let body = two_axis_sweep();
+    for (buffered, streamed) in [(0, 64), (4, 0)] {
+        let app = spawn_app(ServiceConfig {
+            max_buffered_sweeps: buffered,
+            max_streamed_sweeps: streamed,
+            ..ServiceConfig::default()
+        })
+        .await;
+        for accept in [
+            "application/json",
+            "image/svg+xml",
+            "text/csv",
+            "application/x-ndjson",
+        ] {
+            let (status, headers, bytes) = app.post_accept("/v1/sweeps", accept, &body).await;
+            let refused = if accept.starts_with("application/json") || accept.starts_with("image/") {
+                buffered == 0
+            } else {
+                streamed == 0
+            };
+            if refused {
+                assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE, "{accept}");
+                assert_eq!(headers["retry-after"], "1", "{accept}");
+                let problem: Value = serde_json::from_slice(&bytes).expect("a problem");
+                assert_eq!(
+                    problem["type"], "urn:restitution:problem:sweeps-busy",
+                    "{problem}"
+                );
+                assert!(
+                    problem["detail"].as_str().unwrap().contains("retry shortly"),
+                    "{problem}"
+                );
+            } else {
+                assert_eq!(
+                    status,
+                    StatusCode::OK,
+                    "{accept}: {}",
+                    String::from_utf8_lossy(&bytes)
+                );
+            }
+        }
+    }
 }

@@ -155,16 +155,23 @@ fn push_string(out: &mut Vec<u8>, s: &str) {
 }
 
 /// The JSON table, computed in parallel chunks.
-pub(super) fn table<C: SweepCase>(sweep: &Sweep<C>, writer: &RowWriter) -> Vec<u8> {
+pub(super) fn table<C: SweepCase>(
+    sweep: &Sweep<C>,
+    writer: &RowWriter,
+    stop: impl Fn() -> bool + Sync,
+) -> Vec<u8> {
     let mut out = writer.header();
     let mut errors = 0u64;
     sweep.run_parallel(
         writer.chunk_points(),
-        |range| chunk(sweep, writer, range),
-        |(bytes, failed)| {
-            out.extend_from_slice(&bytes);
-            errors += failed;
-            true
+        |range| (!stop()).then(|| chunk(sweep, writer, range)),
+        |chunk| match chunk {
+            Some((bytes, failed)) => {
+                out.extend_from_slice(&bytes);
+                errors += failed;
+                true
+            }
+            None => false,
         },
     );
     out.extend_from_slice(

@@ -20,6 +20,7 @@ mod stream;
 
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use axum::body::Body;
@@ -35,6 +36,7 @@ pub use self::cases::{AnySweep, CaseDto, build};
 use self::encode::{RowWriter, table};
 pub use self::negotiate::{Format, negotiate};
 pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
+use self::reduce::CancelOnDrop;
 pub use self::reduce::{
     ExtremeDto, HistogramCounts, HistogramDto, MAX_BINS, NameSummary, NumberSummary, OutputSummary,
     ReduceDto, RefusedDto, SweepReduction, reduce_blocking,
@@ -225,18 +227,30 @@ async fn respond<C: Case>(
         Format::Svg => {
             let axes: Vec<_> = sweep.axes().iter().map(|a| a.param).collect();
             let plot = plot::Plot::check(&axes, sweep.case().columns(), &sweep)?;
+            let (permit, cancel) = (streams.buffered_permit()?, Arc::new(AtomicBool::new(false)));
+            let _cancel_on_drop = CancelOnDrop(cancel.clone());
             let sweep = Arc::new(sweep);
-            let text = tokio::task::spawn_blocking(move || plot.render(&sweep))
-                .await
-                .map_err(|_| internal())?;
+            let text = tokio::task::spawn_blocking(move || {
+                let _permit = permit;
+                plot.render(&sweep, || cancel.load(Ordering::Acquire))
+            })
+            .await
+            .map_err(|_| internal())?;
             computed.inc_by(points);
             Body::from(text)
         }
         Format::Json => {
+            // Held until the computation ends, and stopped at its next chunk
+            // when the request is dropped (a timeout, a client gone).
+            let (permit, cancel) = (streams.buffered_permit()?, Arc::new(AtomicBool::new(false)));
+            let _cancel_on_drop = CancelOnDrop(cancel.clone());
             let sweep = Arc::new(sweep);
-            let text = tokio::task::spawn_blocking(move || table(&sweep, &writer))
-                .await
-                .map_err(|_| internal())?;
+            let text = tokio::task::spawn_blocking(move || {
+                let _permit = permit;
+                table(&sweep, &writer, || cancel.load(Ordering::Acquire))
+            })
+            .await
+            .map_err(|_| internal())?;
             computed.inc_by(points);
             Body::from(text)
         }
@@ -247,7 +261,16 @@ async fn respond<C: Case>(
                 counted(&range);
                 encode::chunk(sweep, &rows, range).0
             };
-            stream(Arc::new(sweep), chunk_points, produce, writer, stall, streams)
+            let permit = streams.streamed_permit()?;
+            stream(
+                Arc::new(sweep),
+                chunk_points,
+                produce,
+                writer,
+                stall,
+                streams,
+                permit,
+            )
         }
         Format::Arrow => {
             let metadata = arrow_metadata(request, precision, total, &range);
@@ -258,7 +281,16 @@ async fn respond<C: Case>(
                 counted(&range);
                 layout.chunk(sweep, range)
             };
-            stream(Arc::new(sweep), chunk_points, produce, sink, stall, streams)
+            let permit = streams.streamed_permit()?;
+            stream(
+                Arc::new(sweep),
+                chunk_points,
+                produce,
+                sink,
+                stall,
+                streams,
+                permit,
+            )
         }
     };
     let mut response = (StatusCode::OK, body).into_response();

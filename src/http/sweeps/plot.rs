@@ -99,14 +99,18 @@ impl Plot {
         })
     }
 
-    /// Computes the sweep and draws it.
-    pub fn render<C: SweepCase>(&self, sweep: &Sweep<C>) -> String {
+    /// Computes the sweep and draws it (what is computed when `stop()`
+    /// turns true: the caller has gone and discards it).
+    pub fn render<C: SweepCase>(&self, sweep: &Sweep<C>, stop: impl Fn() -> bool + Sync) -> String {
         let mut series: Vec<Vec<Point>> = vec![Vec::new(); self.series as usize];
         let product = sweep.combine() == Combine::Product;
         let regime = self.regime;
         sweep.run_parallel(
             CHUNK_POINTS,
             |range| {
+                if stop() {
+                    return None;
+                }
                 let mut points = Vec::new();
                 sweep.for_each_in(range, |row| {
                     let key = if product {
@@ -133,13 +137,16 @@ impl Plot {
                     };
                     points.push((key as usize, (row.axis_values[0], y, name)));
                 });
-                points
+                Some(points)
             },
-            |points| {
-                for (key, point) in points {
-                    series[key].push(point);
+            |points| match points {
+                Some(points) => {
+                    for (key, point) in points {
+                        series[key].push(point);
+                    }
+                    true
                 }
-                true
+                None => false,
             },
         );
         let labels: Vec<String> = (0..self.series).map(|key| self.label(sweep, key)).collect();

@@ -211,7 +211,7 @@ pub(super) fn bins(reduce: &ReduceDto, columns: &[Output]) -> Result<Vec<Option<
 
 /// Sets a flag when dropped: the handler's future dropped (the client went
 /// away, or the request timed out) stops the reduction's workers.
-struct CancelOnDrop(Arc<AtomicBool>);
+pub(super) struct CancelOnDrop(pub(super) Arc<AtomicBool>);
 
 impl Drop for CancelOnDrop {
     fn drop(&mut self) {

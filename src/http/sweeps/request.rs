@@ -275,7 +275,24 @@ pub(super) fn output_columns<C: Case>(base: &C, outputs: Option<&[String]>) -> R
                 ),
             ));
         }
-        columns.extend(matched);
+        // Each column once: an entry that adds none is refused (a repeated
+        // output would repeat a whole column of every point).
+        let before = columns.len();
+        columns.extend(
+            matched
+                .into_iter()
+                .filter(|o| !columns.contains(o))
+                .collect::<Vec<_>>(),
+        );
+        if columns.len() == before {
+            return Err(structure(
+                format!("/outputs/{i}"),
+                "Invalid sweep output",
+                format!(
+                    "{pointer:?} names only outputs an earlier entry already asks for; give each output once"
+                ),
+            ));
+        }
     }
     Ok(columns)
 }

@@ -9,29 +9,94 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 use axum::body::{Body, Bytes};
-use tokio::sync::mpsc;
+use axum::http::StatusCode;
+use tokio::sync::{OwnedSemaphorePermit, Semaphore, mpsc};
 
 use super::encode::RowWriter;
+use crate::http::problem::ApiError;
 use crate::sweep::{Sweep, SweepCase};
 
 /// Chunks queued between the workers and the socket.
 const QUEUED_CHUNKS: usize = 4;
 
-/// How many streamed or reduced sweeps of one application are still computing (part of
-/// the application's state; for tests and diagnostics).
-#[derive(Debug, Clone, Default)]
-pub struct Streams(Arc<AtomicUsize>);
+/// The sweeps of one application at work (part of its state): how many
+/// streamed or reduced sweeps are still computing (for tests, diagnostics and
+/// shutdown), and the permits that bound how many buffered and streamed
+/// sweeps compute at once, which bounds the memory they hold
+/// (docs/scaling.md).
+#[derive(Debug, Clone)]
+pub struct Streams {
+    active: Arc<AtomicUsize>,
+    buffered: Arc<Semaphore>,
+    streamed: Arc<Semaphore>,
+}
+
+impl Default for Streams {
+    fn default() -> Self {
+        let defaults = crate::http::ServiceConfig::default();
+        Streams {
+            active: Arc::default(),
+            buffered: Arc::new(Semaphore::new(defaults.max_buffered_sweeps)),
+            streamed: Arc::new(Semaphore::new(defaults.max_streamed_sweeps)),
+        }
+    }
+}
 
 impl Streams {
     /// The number of streamed sweeps whose producer is still working.
     pub fn active(&self) -> usize {
-        self.0.load(Ordering::Acquire)
+        self.active.load(Ordering::Acquire)
+    }
+
+    /// The same count, with at most `buffered` buffered and `streamed`
+    /// streamed sweeps computing at once.
+    pub fn limited(&self, buffered: usize, streamed: usize) -> Streams {
+        Streams {
+            active: self.active.clone(),
+            buffered: Arc::new(Semaphore::new(buffered)),
+            streamed: Arc::new(Semaphore::new(streamed)),
+        }
     }
 
     pub(super) fn start(&self) -> ActiveStream {
-        self.0.fetch_add(1, Ordering::AcqRel);
-        ActiveStream(self.0.clone())
+        self.active.fetch_add(1, Ordering::AcqRel);
+        ActiveStream(self.active.clone())
     }
+
+    /// A permit to compute a buffered sweep (JSON table, SVG plot), held
+    /// until its computation ends; 503 when all are taken.
+    pub(super) fn buffered_permit(&self) -> Result<OwnedSemaphorePermit, ApiError> {
+        self.buffered.clone().try_acquire_owned().map_err(|_| {
+            busy(
+                "buffered (application/json, image/svg+xml)",
+                "or ask for a streamed format",
+            )
+        })
+    }
+
+    /// A permit to stream a sweep (CSV, NDJSON, Arrow), held by its producer;
+    /// 503 when all are taken.
+    pub(super) fn streamed_permit(&self) -> Result<OwnedSemaphorePermit, ApiError> {
+        self.streamed.clone().try_acquire_owned().map_err(|_| {
+            busy(
+                "streamed (text/csv, application/x-ndjson, Arrow)",
+                "or ask for a reduction",
+            )
+        })
+    }
+}
+
+/// The refusal of a sweep beyond its kind's limit: 503, retry in a second.
+fn busy(kind: &str, instead: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::SERVICE_UNAVAILABLE,
+        "sweeps-busy",
+        "Too many sweeps at once",
+        format!(
+            "the server is computing as many {kind} sweeps as it takes at once; retry shortly, {instead}"
+        ),
+    )
+    .retry_after(1)
 }
 
 /// Counts a producer as active while it lives.
@@ -106,6 +171,7 @@ pub(super) fn stream<C, T, P, S>(
     sink: S,
     stall: Duration,
     streams: &Streams,
+    permit: OwnedSemaphorePermit,
 ) -> Body
 where
     C: SweepCase + Send + 'static,
@@ -119,7 +185,7 @@ where
     let runtime = tokio::runtime::Handle::current();
     let active = streams.start();
     tokio::task::spawn_blocking(move || {
-        let _active = active;
+        let (_active, _permit) = (active, permit);
         let send = |bytes: Vec<u8>| {
             runtime
                 .block_on(tx.send_timeout(Bytes::from(bytes), stall))
