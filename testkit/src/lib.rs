@@ -16,6 +16,7 @@ pub mod rotation;
 pub mod server;
 pub mod spatial_reference;
 pub mod sweep_rows;
+pub mod tosses;
 pub mod validation;
 
 pub use rng::Rng;

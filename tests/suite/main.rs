@@ -26,5 +26,6 @@ mod spatial_reference;
 mod sweep_rows;
 mod sweeps;
 mod telemetry;
+mod tosses;
 mod validation;
 mod web;
