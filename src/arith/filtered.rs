@@ -1,6 +1,7 @@
-//! The `fast` precision's arithmetic: plain f64 values, each carrying a static
-//! error bound so that every decision the model takes on them is the exact
-//! one or is reported undecided (a filter, as in Shewchuk's adaptive
+//! The `fast` precision's arithmetic: plain f64 values, each carrying error
+//! bounds so that every decision the model takes on them is the exact one or
+//! is reported undecided, and every output is within the promised error or
+//! is reported inaccurate (a filter, as in Shewchuk's adaptive
 //! predicates). An undecided decision sends the whole impact to the exact
 //! stages ([`crate::impact`]); a decided one costs a comparison.
 //!
@@ -83,9 +84,11 @@ pub(crate) enum Uncertain {
 /// so `|x − h| ≤ (p/2) / (1 − p/2) max(|x|, S)`, within [`PROMISED_RELATIVE_ERROR`].
 const ACCEPTED_RELATIVE_BOUND: f64 = 0.5 * PROMISED_RELATIVE_ERROR;
 
-/// The factor applied to the running bound `E` where it is read: covers the
-/// roundings of `E`'s own few operations per step (below `(1 + u)⁴` each,
-/// along fewer than 4096 steps) and `|h_x / h_y| ≤ |q| (1 + u)` in quotients.
+/// The factor applied to the running bound `E` where it is read, and to an
+/// operand's `E` where a rule uses it other than linearly (a divisor's low
+/// end, a factor's magnitude, a root's radicand): covers the roundings of
+/// `E`'s own few operations per step (below `(1 + u)⁴` each, along fewer
+/// than 4096 steps, so far below `2⁻¹⁰` in all).
 const RUNNING_SLACK: f64 = 1.0 + 1.0 / 1024.0;
 
 /// The most a rounding in the subnormal range adds beside `u |h|`: half the
@@ -93,10 +96,14 @@ const RUNNING_SLACK: f64 = 1.0 + 1.0 / 1024.0;
 const UNDERFLOW: f64 = f64::from_bits(1);
 
 /// `|x y − h_x h_y| ≤ (|h_x| + E_x) E_y + |h_y| E_x`, plus `E_z` of an added
-/// term.
+/// term. (The true bounds are at most [`RUNNING_SLACK`] times the `e`
+/// carried: where a bound enters other than linearly, here `E_x` beside
+/// `|h_x|`, it is taken grown by that factor, so the factor does not
+/// compound from step to step.)
 #[inline(always)]
 fn product_error(x: &Filtered, y: &Filtered, e_z: f64) -> f64 {
-    (x.h.abs() + x.e).mul_add(y.e, y.h.abs().mul_add(x.e, e_z))
+    x.e.mul_add(RUNNING_SLACK, x.h.abs())
+        .mul_add(y.e, y.h.abs().mul_add(x.e, e_z))
 }
 
 /// A rounded result's running bound: the operands' error `carried` plus the
@@ -255,7 +262,9 @@ impl Filtered {
     /// `|x / y|`, `λ_q = max(λ_x, λ_y) + 2` (one for the rounding, one for the
     /// difference between `|h_x/h_y|` and `|q|` and the roundings of `y_low`).
     /// An exactly zero dividend gives an exact zero (`M = 0`). An uncertain
-    /// divisor gives `M = ∞`, which decides nothing; the model divides only
+    /// divisor gives `M = ∞`, which decides nothing (the running bound is
+    /// certified on the same terms, its own divisor bound at most half of
+    /// `|h_y|`, else infinite); the model divides only
     /// by values whose exact value is not zero (the exact stages could not
     /// divide otherwise), so the quotient's exact value is a real number and
     /// its product with an exact zero the exact zero it is taken for.
@@ -274,11 +283,13 @@ impl Filtered {
         } else {
             f64::INFINITY
         };
-        // (E_x + |q| E_y) / (|h_y| − E_y): an uncertain divisor (or a NaN)
-        // leaves no finite bound.
-        let low = o.h.abs() - o.e;
-        let carried = if low > 0.0 {
-            q.abs().mul_add(o.e, self.e) / low
+        // (E_x + |h_x/h_y| E_y) / |y|, with |y| ≥ |h_y| − E_y taken with
+        // E_y grown by its slack and certified, as (F2)'s divisor is, only
+        // when that keeps at least half of |h_y| (a NaN fails the test);
+        // |h_x/h_y| ≤ |q| (1 + 2u) plus an underflow. Else no finite bound.
+        let low = (o.h.abs() - o.e * RUNNING_SLACK) * (1.0 - 4.0 * U);
+        let carried = if low >= 0.5 * o.h.abs() && low > 0.0 {
+            q.abs().mul_add(ONE_PLUS_2U, UNDERFLOW).mul_add(o.e, self.e) / low
         } else {
             f64::INFINITY
         };
@@ -337,8 +348,9 @@ impl Filtered {
         }
         // |√x − √h| = |x − h| / (√x + √h) ≤ E / (√(h − E) + √h), and at
         // most √E however much of h is uncertain (a NaN E stays a NaN).
-        let carried = if self.e < self.h {
-            self.e / ((self.h - self.e).sqrt() + s)
+        let grown = self.e * RUNNING_SLACK;
+        let carried = if grown < self.h {
+            self.e / ((self.h - grown).sqrt() + s)
         } else {
             self.e.sqrt()
         };
@@ -396,7 +408,12 @@ impl Filtered {
         let error_x = self.error_bound();
         let error_y = y.error_bound();
         let bound = if y.h > error_y && self.h != 0.0 {
-            v.abs() * (error_x / self.h.abs() + error_y / y.h + 2.0 * U)
+            // (1 + a)(1 + b) − 1 = a + b + a b: the cross term is not
+            // second-order where a bound is near its value.
+            {
+                let (a, b) = (error_x / self.h.abs(), error_y / y.h);
+                v.abs() * (a.mul_add(b, a + b) + 2.0 * U)
+            }
         } else {
             (self.h.abs() + error_x) * (y.h.max(0.0) + error_y).sqrt() + v.abs()
         };

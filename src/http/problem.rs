@@ -200,7 +200,7 @@ pub enum Problems {
     /// The server is at its concurrency limit; retry after the given seconds.
     #[response(
         status = 503,
-        description = "Overloaded: retry after `Retry-After` seconds",
+        description = "Overloaded (the concurrency limit, or for sweeps the limit of buffered or streamed sweeps computed at once): retry after `Retry-After` seconds",
         content_type = "application/problem+json"
     )]
     Overloaded(Problem),

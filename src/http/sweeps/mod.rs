@@ -23,7 +23,6 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use axum::body::Body;
 use axum::extract::{FromRef, State};
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
@@ -230,14 +229,13 @@ async fn respond<C: Case>(
             let (permit, cancel) = (streams.buffered_permit()?, Arc::new(AtomicBool::new(false)));
             let _cancel_on_drop = CancelOnDrop(cancel.clone());
             let sweep = Arc::new(sweep);
-            let text = tokio::task::spawn_blocking(move || {
-                let _permit = permit;
-                plot.render(&sweep, || cancel.load(Ordering::Acquire))
+            let (text, permit) = tokio::task::spawn_blocking(move || {
+                (plot.render(&sweep, || cancel.load(Ordering::Acquire)), permit)
             })
             .await
             .map_err(|_| internal())?;
             computed.inc_by(points);
-            Body::from(text)
+            stream::buffered(text.into_bytes(), stall, permit)
         }
         Format::Json => {
             // Held until the computation ends, and stopped at its next chunk
@@ -245,14 +243,13 @@ async fn respond<C: Case>(
             let (permit, cancel) = (streams.buffered_permit()?, Arc::new(AtomicBool::new(false)));
             let _cancel_on_drop = CancelOnDrop(cancel.clone());
             let sweep = Arc::new(sweep);
-            let text = tokio::task::spawn_blocking(move || {
-                let _permit = permit;
-                table(&sweep, &writer, || cancel.load(Ordering::Acquire))
+            let (text, permit) = tokio::task::spawn_blocking(move || {
+                (table(&sweep, &writer, || cancel.load(Ordering::Acquire)), permit)
             })
             .await
             .map_err(|_| internal())?;
             computed.inc_by(points);
-            Body::from(text)
+            stream::buffered(text, stall, permit)
         }
         Format::Csv | Format::Ndjson => {
             let chunk_points = writer.chunk_points();

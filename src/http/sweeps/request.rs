@@ -92,7 +92,8 @@ pub struct SweepRequest {
     #[serde(default)]
     pub combine: CombineDto,
     /// JSON pointers into the case's response choosing the columns (a pointer to an
-    /// object takes all its members); absent means every output.
+    /// object takes all its members); absent means every output. Each column
+    /// once: an entry naming only columns already chosen is refused.
     pub outputs: Option<Vec<String>>,
     /// Arithmetic precision: `fast` or `exact`. Absent: the base's `precision`,
     /// else `fast`; when both are given they must agree.

@@ -197,6 +197,39 @@ where
             tracing::info!("sweep stream stopped: the client went away or stopped reading");
         }
     });
+    body_of(rx, complete)
+}
+
+/// A buffered answer (a JSON table, an SVG plot) sent as a stream is: in
+/// chunks through the bounded channel, its permit and bytes held until the
+/// client has them, or has read nothing for `stall` (then both are dropped
+/// and the response ends with an error). Each chunk is a copy, so the
+/// answer's memory goes with the sender, not with the queued chunks.
+pub(super) fn buffered(bytes: Vec<u8>, stall: Duration, permit: OwnedSemaphorePermit) -> Body {
+    const CHUNK: usize = 256 * 1024;
+    let (tx, rx) = mpsc::channel::<Bytes>(QUEUED_CHUNKS);
+    let complete = Arc::new(AtomicBool::new(false));
+    let done = complete.clone();
+    tokio::spawn(async move {
+        let _permit = permit;
+        for chunk in bytes.chunks(CHUNK) {
+            if tx
+                .send_timeout(Bytes::copy_from_slice(chunk), stall)
+                .await
+                .is_err()
+            {
+                tracing::info!("buffered sweep dropped: the client went away or stopped reading");
+                return;
+            }
+        }
+        done.store(true, Ordering::Release);
+    });
+    body_of(rx, complete)
+}
+
+/// The response body of chunks from `rx`: it ends cleanly once `complete`
+/// is set, and with an error when the sender stopped before its end.
+fn body_of(rx: mpsc::Receiver<Bytes>, complete: Arc<AtomicBool>) -> Body {
     let stream = futures_util::stream::unfold((rx, complete), |(mut rx, complete)| async move {
         match rx.recv().await {
             Some(bytes) => Some((Ok::<_, std::io::Error>(bytes), (rx, complete))),
