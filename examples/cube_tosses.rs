@@ -2,11 +2,14 @@
 //! contactnets_cube_tosses_0-399.csv.gz`): the table of bounces by class,
 //! the cube's inertia from the angular-momentum balance of single-corner
 //! impacts with its uncertainty, and the balance's residuals against the
-//! data's noise. The method and these numbers are in `docs/tosses.md`.
+//! data's noise; then the prediction of held-out tosses (two folds by toss)
+//! with each contact model, and where the point model stops following
+//! (edge and face impacts). The method and these numbers are in
+//! `docs/tosses.md`.
 //!
 //! `cargo run --example cube_tosses`
 
-use restitution_testkit::tosses::{self, Bounce, Class, Detection, Skip};
+use restitution_testkit::tosses::{self, Bounce, Class, Detection, Model, Skip};
 use std::collections::BTreeMap;
 
 /// `I₀` (kg m²) as `I/(m h²)`.
@@ -283,4 +286,241 @@ fn main() {
         mh2(f.bootstrap_sd),
         tosses::balance_residual(&after_view, f.inertia)
     );
+    prediction(&distinct);
+}
+
+/// Coefficients as `name value` pairs.
+fn coefficients(model: Model, p: &[f64]) -> String {
+    if model == Model::Authors {
+        return "e 0.125, f 0.18".into();
+    }
+    let names = model.parameters();
+    if names.is_empty() {
+        return "–".into();
+    }
+    names
+        .iter()
+        .zip(p)
+        .map(|(n, v)| format!("{n} {v:.3}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The two-fold prediction of held-out tosses (issue 34, item 3).
+fn prediction(distinct: &[Bounce]) {
+    const SEED: u64 = 34;
+    let folds = tosses::fold_of_tosses(distinct, SEED);
+    let in_fold = |k: usize, c: Class| {
+        distinct
+            .iter()
+            .filter(|b| folds[&b.toss] == k && b.class == c)
+            .count()
+    };
+    println!("\n## Prediction of held-out tosses\n");
+    println!(
+        "Distinct tosses with a bounce split in two folds by toss (seed {SEED}): {} and {} tosses; \
+         single-corner impacts {} and {}, edge {} and {}, face {} and {}. Each fold's I0 and coefficients \
+         are fitted on the other fold's single-corner impacts (least squares of the post-impact \
+         velocities of G and of the contact point); every bounce is predicted once, and the table \
+         pools both held-out folds. Twist pitch radius {} mm.\n",
+        folds.values().filter(|&&k| k == 0).count(),
+        folds.values().filter(|&&k| k == 1).count(),
+        in_fold(0, Class::Corner),
+        in_fold(1, Class::Corner),
+        in_fold(0, Class::Edge),
+        in_fold(1, Class::Edge),
+        in_fold(0, Class::Face),
+        in_fold(1, Class::Face),
+        tosses::PITCH_RADIUS * 1e3
+    );
+    let results = tosses::held_out(distinct, &Model::ALL, SEED);
+    println!(
+        "I0 per fold (fitted on its training tosses): {:.4}, {:.4} m h²\n",
+        mh2(results[0].inertia[0]),
+        mh2(results[0].inertia[1])
+    );
+    let refused_training: usize = results
+        .iter()
+        .flat_map(|h| h.train.iter().map(|t| t.refused))
+        .sum();
+    println!(
+        "Refusals at the fitted coefficients on the training folds, all models: {refused_training}; \
+         held out: in the tables.\n"
+    );
+    let change = results[0].corner.rms_changes();
+    println!(
+        "RMS of the measured change (single-corner, held out): G {:.3} m/s, contact point {:.3} m/s, \
+         ω {:.2} rad/s, G and contact point {:.3} m/s.\n",
+        change[0], change[1], change[2], change[3]
+    );
+    for (title, class) in [
+        ("Single-corner impacts", Class::Corner),
+        ("Edge impacts (contact at the edge's midpoint)", Class::Edge),
+        (
+            "Face impacts (contact at the touching corners' mean)",
+            Class::Face,
+        ),
+    ] {
+        let pick = |h: &tosses::HeldOut| match class {
+            Class::Corner => h.corner,
+            Class::Edge => h.edge,
+            Class::Face => h.face,
+        };
+        println!("### {title}, held out\n");
+        println!(
+            "| model | fit for fold 1 (on fold 2) | fit for fold 2 (on fold 1) | G m/s (rel) | contact m/s (rel) | ω rad/s (rel) | G+contact m/s (rel) | refused |\n\
+             |---|---|---|---|---|---|---|---|"
+        );
+        for h in &results {
+            let s = pick(h);
+            let rel = s.relative();
+            println!(
+                "| {} | {} | {} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} ({:.3}) | {:.3} ({:.3}) | {} of {} |",
+                h.model.name(),
+                coefficients(h.model, &h.coefficients[0]),
+                coefficients(h.model, &h.coefficients[1]),
+                s.rms_g(),
+                rel[0],
+                s.rms_c(),
+                rel[1],
+                s.rms_w(),
+                rel[2],
+                s.rms_gc(),
+                rel[3],
+                s.refused,
+                s.n
+            );
+        }
+        println!();
+    }
+    // Where the point model stops following: the fitted Coulomb law's
+    // held-out errors by how close a second corner came to the board.
+    let coulomb = results
+        .iter()
+        .find(|h| h.model == Model::Coulomb)
+        .expect("the Coulomb row");
+    println!("### Fitted Coulomb, held out, by the clearance of the next-lowest corner\n");
+    println!(
+        "| impacts | clearance | n | G (rel) | contact (rel) | ω (rel) | G+contact m/s (rel) |\n|---|---|---|---|---|---|---|"
+    );
+    let bins: [(&str, Class, f64, f64); 5] = [
+        ("edge", Class::Edge, 0.0, f64::INFINITY),
+        ("corner", Class::Corner, 0.005, 0.010),
+        ("corner", Class::Corner, 0.010, 0.020),
+        ("corner", Class::Corner, 0.020, 0.040),
+        ("corner", Class::Corner, 0.040, f64::INFINITY),
+    ];
+    for (name, class, lo, hi) in bins {
+        let mut s = tosses::Score::default();
+        for k in 0..2 {
+            let part: Vec<&Bounce> = distinct
+                .iter()
+                .filter(|b| folds[&b.toss] == k && b.class == class && b.clearance >= lo && b.clearance < hi)
+                .collect();
+            s = s.plus(&tosses::score(
+                &part,
+                coulomb.inertia[k],
+                Model::Coulomb,
+                &coulomb.coefficients[k],
+            ));
+        }
+        let rel = s.relative();
+        let range = if class == Class::Edge {
+            "(two corners within 5 mm)".to_string()
+        } else if hi.is_finite() {
+            format!("{:.0}–{:.0} mm", lo * 1e3, hi * 1e3)
+        } else {
+            format!("≥ {:.0} mm", lo * 1e3)
+        };
+        println!(
+            "| {name} | {range} | {} | {:.3} | {:.3} | {:.3} | {:.3} ({:.3}) |",
+            s.n,
+            rel[0],
+            rel[1],
+            rel[2],
+            s.rms_gc(),
+            rel[3]
+        );
+    }
+    println!();
+    // The edges' angular velocity errors, about the edge, across it and about
+    // the normal: a line contact's spread of normal force has a moment
+    // about the axis across the edge, which a point at its midpoint cannot give.
+    let mut error = [0.0; 3];
+    let mut change = [0.0; 3];
+    let mut n = 0;
+    for b in distinct.iter().filter(|b| b.class == Class::Edge) {
+        let k = folds[&b.toss];
+        let Ok(p) = tosses::predict(b, coulomb.inertia[k], Model::Coulomb, &coulomb.coefficients[k]) else {
+            continue;
+        };
+        let u = tosses::edge_axis(b).expect("an edge");
+        let e = tosses::edge_components(std::array::from_fn(|i| p.omega[i] - b.post.omega[i]), u);
+        let c = tosses::edge_components(b.domega(), u);
+        for (i, (e, c)) in e.into_iter().zip(c).enumerate() {
+            error[i] += e * e;
+            change[i] += c * c;
+        }
+        n += 1;
+    }
+    let rms = |x: f64| (x / n.max(1) as f64).sqrt();
+    println!(
+        "Edge impacts' angular velocity (fitted Coulomb, held out, {n}): RMS error (measured change) about \
+         the edge {:.2} ({:.2}) rad/s, across it {:.2} ({:.2}), about the normal {:.2} ({:.2}).\n",
+        rms(error[0]),
+        rms(change[0]),
+        rms(error[1]),
+        rms(change[1]),
+        rms(error[2]),
+        rms(change[2])
+    );
+    // The authors' coefficients with their simulator's inertia (no fit,
+    // every single-corner impact).
+    let corners: Vec<&Bounce> = distinct.iter().filter(|b| b.class == Class::Corner).collect();
+    let header = tosses::score(&corners, tosses::header_inertia(), Model::Authors, &[]);
+    println!(
+        "The authors' coefficients at the header's inertia 0.797 m h² instead of I0 (all {} single-corner \
+         impacts): G {:.3} m/s ({:.3}), contact {:.3} m/s ({:.3}), ω {:.2} rad/s ({:.3}), G+contact {:.3} m/s \
+         ({:.3}), {} refused.\n",
+        header.n,
+        header.rms_g(),
+        header.relative()[0],
+        header.rms_c(),
+        header.relative()[1],
+        header.rms_w(),
+        header.relative()[2],
+        header.rms_gc(),
+        header.relative()[3],
+        header.refused
+    );
+    // In-sample: every single-corner impact, I0 of them all.
+    let inertia = tosses::fit_inertia(distinct, 0, SEED).inertia;
+    println!(
+        "### In sample: fitted on all {} single-corner impacts (I0 {:.4} m h²)\n",
+        corners.len(),
+        mh2(inertia)
+    );
+    println!(
+        "| model | fit | G m/s (rel) | contact m/s (rel) | ω rad/s (rel) | G+contact m/s (rel) | refused |\n|---|---|---|---|---|---|---|"
+    );
+    let (coulomb, _) = tosses::fit_model(&corners, inertia, Model::Coulomb, None);
+    for model in Model::ALL {
+        let (p, s) = tosses::fit_model(&corners, inertia, model, Some(&coulomb));
+        let rel = s.relative();
+        println!(
+            "| {} | {} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} ({:.3}) | {:.3} ({:.3}) | {} of {} |",
+            model.name(),
+            coefficients(model, &p),
+            s.rms_g(),
+            rel[0],
+            s.rms_c(),
+            rel[1],
+            s.rms_w(),
+            rel[2],
+            s.rms_gc(),
+            rel[3],
+            s.refused,
+            s.n
+        );
+    }
 }

@@ -969,3 +969,521 @@ pub fn fit_inertia_tensor(bounces: &[Bounce]) -> ([f64; 6], f64) {
     let residual = (&a * &x - &y).norm() / y.norm();
     ([x[0], x[1], x[2], x[3], x[4], x[5]], residual)
 }
+
+// Prediction of held-out tosses (issue 34, item 3).
+
+/// The pitch radius `ρ_p` of the twist law's friction couple (m): 10 mm,
+/// about a fifth of the half-width. Only `μ_z ρ_p` enters the couple's cap
+/// `|M| ≤ μ_z ρ_p P_n`, so another `ρ_p` rescales the fitted `μ_z`.
+pub const PITCH_RADIUS: f64 = 0.010;
+
+/// The data's authors' coefficients for their simulator: restitution 0.125,
+/// friction 0.18.
+pub const AUTHORS: [f64; 2] = [0.125, 0.18];
+
+/// A contact model predicting a bounce's post-impact state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Model {
+    /// No impact: the post-impact state is the pre-impact one (the floor).
+    NoImpact,
+    /// Frictionless, `e` fitted.
+    Frictionless,
+    /// Coulomb friction with the authors' `e = 0.125`, `f = 0.18` ([`AUTHORS`]).
+    Authors,
+    /// Coulomb friction, `e` and `f` fitted.
+    Coulomb,
+    /// The bilinear tangential-restitution law, `e`, `f`, `e_t` fitted.
+    Bilinear,
+    /// Coulomb friction with the twist law about the normal, `e`, `f`,
+    /// `e_z`, `μ_z` fitted ([`PITCH_RADIUS`]).
+    Twist,
+}
+
+impl Model {
+    /// All of them, in the table's order.
+    pub const ALL: [Model; 6] = [
+        Model::NoImpact,
+        Model::Frictionless,
+        Model::Authors,
+        Model::Coulomb,
+        Model::Bilinear,
+        Model::Twist,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::NoImpact => "no impact",
+            Model::Frictionless => "frictionless, e fitted",
+            Model::Authors => "Coulomb, authors' e 0.125, f 0.18",
+            Model::Coulomb => "Coulomb, e f fitted",
+            Model::Bilinear => "bilinear, e f e_t fitted",
+            Model::Twist => "Coulomb + twist, e f e_z mu_z fitted",
+        }
+    }
+
+    /// The fitted coefficients' names.
+    pub fn parameters(self) -> &'static [&'static str] {
+        match self {
+            Model::NoImpact | Model::Authors => &[],
+            Model::Frictionless => &["e"],
+            Model::Coulomb => &["e", "f"],
+            Model::Bilinear => &["e", "f", "e_t"],
+            Model::Twist => &["e", "f", "e_z", "mu_z"],
+        }
+    }
+
+    /// The admissible range of each fitted coefficient (the friction
+    /// coefficients' upper ends are far beyond any fit: 3 for `f`, 10 for
+    /// `μ_z`).
+    pub fn bounds(self) -> Vec<(f64, f64)> {
+        self.parameters()
+            .iter()
+            .map(|&p| match p {
+                "e" | "e_z" => (0.0, 1.0),
+                "f" => (0.0, 3.0),
+                "e_t" => (-1.0, 1.0),
+                _ => (0.0, 10.0),
+            })
+            .collect()
+    }
+
+    /// The law and twist law at coefficients `p` (`None` for no impact).
+    pub fn law(self, p: &[f64]) -> Option<(restitution::Law, Option<restitution::Twist>)> {
+        use restitution::{Law, Twist};
+        let coulomb = |e: f64, f: f64| Law::Friction {
+            restitution: e,
+            friction: f,
+        };
+        match self {
+            Model::NoImpact => None,
+            Model::Frictionless => Some((Law::Frictionless { restitution: p[0] }, None)),
+            Model::Authors => Some((coulomb(AUTHORS[0], AUTHORS[1]), None)),
+            Model::Coulomb => Some((coulomb(p[0], p[1]), None)),
+            Model::Bilinear => Some((
+                Law::TangentialRestitution {
+                    restitution: p[0],
+                    friction: p[1],
+                    tangential_restitution: p[2],
+                },
+                None,
+            )),
+            Model::Twist => Some((
+                coulomb(p[0], p[1]),
+                Some(Twist {
+                    restitution: p[2],
+                    friction: p[3],
+                    pitch_radius: PITCH_RADIUS,
+                }),
+            )),
+        }
+    }
+}
+
+/// A bounce as a spatial impact: the cube (mass [`MASS`], isotropic inertia
+/// `inertia`, G at the origin, the pre-impact state at the impact instant)
+/// against the board below (`b: None`) at its contact point `r` (the corner;
+/// an edge's or face's touching corners' mean), normal `+z`.
+pub fn spatial_impact(
+    b: &Bounce,
+    inertia: f64,
+    law: restitution::Law,
+    torsion: Option<restitution::Twist>,
+) -> restitution::SpatialImpact {
+    use restitution::{RigidBody, SpatialContact, SpatialImpact};
+    SpatialImpact {
+        a: RigidBody {
+            mass: MASS,
+            inertia: [inertia, inertia, inertia, 0.0, 0.0, 0.0],
+            position: [0.0; 3],
+            velocity: b.pre.velocity,
+            angular_velocity: b.pre.omega,
+        },
+        b: None,
+        contact: SpatialContact {
+            point: b.r,
+            normal: [0.0, 0.0, 1.0],
+        },
+        law,
+        torsion,
+    }
+}
+
+/// The post-impact state `model` predicts at coefficients `p`, solved with
+/// `restitution::solve(…, Outputs::ALL, Precision::Fast)`; the error if the
+/// model refuses the impact.
+pub fn predict(b: &Bounce, inertia: f64, model: Model, p: &[f64]) -> Result<State, restitution::ImpactError> {
+    use restitution::{Outputs, Precision, solve};
+    let Some((law, torsion)) = model.law(p) else {
+        return Ok(b.pre);
+    };
+    let outcome = solve(
+        &spatial_impact(b, inertia, law, torsion),
+        Outputs::ALL,
+        Precision::Fast,
+    )?;
+    Ok(State {
+        velocity: outcome.bodies[0].velocity,
+        omega: outcome.bodies[0].angular_velocity,
+    })
+}
+
+/// The velocity of the contact point `G + r` in a state.
+pub fn contact_point_velocity(s: &State, r: [f64; 3]) -> [f64; 3] {
+    add(s.velocity, cross(s.omega, r))
+}
+
+/// Prediction errors over a set of bounces, as sums of squares: of the
+/// post-impact velocity of G (m/s), of the contact point (m/s) and of the
+/// angular velocity (rad/s), with the same sums of the measured changes
+/// (the no-impact prediction's errors).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Score {
+    /// Bounces predicted.
+    pub n: usize,
+    /// Of which the model refused; each is predicted as no impact (its error
+    /// the measured change), not left out.
+    pub refused: usize,
+    pub g: f64,
+    pub c: f64,
+    pub w: f64,
+    pub dg: f64,
+    pub dc: f64,
+    pub dw: f64,
+}
+
+impl Score {
+    fn rms(&self, ss: f64) -> f64 {
+        (ss / self.n.max(1) as f64).sqrt()
+    }
+    /// RMS error of G's velocity (m/s).
+    pub fn rms_g(&self) -> f64 {
+        self.rms(self.g)
+    }
+    /// RMS error of the contact point's velocity (m/s).
+    pub fn rms_c(&self) -> f64 {
+        self.rms(self.c)
+    }
+    /// RMS error of the angular velocity (rad/s).
+    pub fn rms_w(&self) -> f64 {
+        self.rms(self.w)
+    }
+    /// G and contact point together, `sqrt(Σ (|e_G|² + |e_C|²) / n)` (m/s):
+    /// the RMS length of the six-vector of both points' velocity errors (the
+    /// issue's convention; divide by √2 for the RMS per point).
+    pub fn rms_gc(&self) -> f64 {
+        self.rms(self.g + self.c)
+    }
+    /// The RMS of the measured changes, in the same order (no impact's errors).
+    pub fn rms_changes(&self) -> [f64; 4] {
+        [
+            self.rms(self.dg),
+            self.rms(self.dc),
+            self.rms(self.dw),
+            self.rms(self.dg + self.dc),
+        ]
+    }
+    /// Each RMS error over the RMS of its measured change: G, contact point,
+    /// angular velocity, G and contact point together (1 for no impact).
+    pub fn relative(&self) -> [f64; 4] {
+        [
+            (self.g / self.dg).sqrt(),
+            (self.c / self.dc).sqrt(),
+            (self.w / self.dw).sqrt(),
+            ((self.g + self.c) / (self.dg + self.dc)).sqrt(),
+        ]
+    }
+    /// The sum of two scores (pooled sums of squares).
+    pub fn plus(&self, o: &Score) -> Score {
+        Score {
+            n: self.n + o.n,
+            refused: self.refused + o.refused,
+            g: self.g + o.g,
+            c: self.c + o.c,
+            w: self.w + o.w,
+            dg: self.dg + o.dg,
+            dc: self.dc + o.dc,
+            dw: self.dw + o.dw,
+        }
+    }
+}
+
+/// `model`'s errors at coefficients `p` over `bounces`.
+pub fn score(bounces: &[&Bounce], inertia: f64, model: Model, p: &[f64]) -> Score {
+    let mut s = Score::default();
+    for b in bounces {
+        let predicted = predict(b, inertia, model, p).unwrap_or_else(|_| {
+            s.refused += 1;
+            b.pre
+        });
+        let sq = |a: [f64; 3], b: [f64; 3]| dot(sub(a, b), sub(a, b));
+        let (vc_pre, vc_post) = (
+            contact_point_velocity(&b.pre, b.r),
+            contact_point_velocity(&b.post, b.r),
+        );
+        s.n += 1;
+        s.g += sq(predicted.velocity, b.post.velocity);
+        s.c += sq(contact_point_velocity(&predicted, b.r), vc_post);
+        s.w += sq(predicted.omega, b.post.omega);
+        s.dg += sq(b.pre.velocity, b.post.velocity);
+        s.dc += sq(vc_pre, vc_post);
+        s.dw += sq(b.pre.omega, b.post.omega);
+    }
+    s
+}
+
+/// Minimises `f` over the box `bounds`: the best point of a grid of `grid`
+/// points per coordinate (or `start`, if better), then Nelder–Mead with the
+/// points clamped into the box, until the simplex's values agree to 1e-10
+/// relatively or `max_evaluations` (beyond the grid's) are spent. Returns
+/// the point and its value.
+pub fn minimise(
+    f: &mut dyn FnMut(&[f64]) -> f64,
+    bounds: &[(f64, f64)],
+    grid: usize,
+    start: Option<&[f64]>,
+    max_evaluations: usize,
+) -> (Vec<f64>, f64) {
+    let d = bounds.len();
+    let clamp = |x: &[f64]| -> Vec<f64> {
+        x.iter()
+            .zip(bounds)
+            .map(|(v, (lo, hi))| v.clamp(*lo, *hi))
+            .collect()
+    };
+    if d == 0 {
+        return (Vec::new(), f(&[]));
+    }
+    // The grid.
+    let mut best: (Vec<f64>, f64) = (Vec::new(), f64::INFINITY);
+    if let Some(s) = start {
+        let s = clamp(s);
+        let v = f(&s);
+        best = (s, v);
+    }
+    let points = grid.max(1);
+    for index in 0..points.pow(d as u32) {
+        let x: Vec<f64> = (0..d)
+            .map(|i| {
+                let k = index / points.pow(i as u32) % points;
+                let (lo, hi) = bounds[i];
+                if points == 1 {
+                    (lo + hi) / 2.0
+                } else {
+                    lo + (hi - lo) * k as f64 / (points - 1) as f64
+                }
+            })
+            .collect();
+        let v = f(&x);
+        if v < best.1 {
+            best = (x, v);
+        }
+    }
+    // Nelder–Mead from the best grid point, steps a tenth of each range.
+    let mut simplex: Vec<(Vec<f64>, f64)> = vec![best.clone()];
+    for i in 0..d {
+        let mut x = best.0.clone();
+        let (lo, hi) = bounds[i];
+        let step = (hi - lo) / 10.0;
+        x[i] = if x[i] + step <= hi {
+            x[i] + step
+        } else {
+            x[i] - step
+        };
+        let v = f(&x);
+        simplex.push((x, v));
+    }
+    let mut evaluations = d;
+    while evaluations < max_evaluations {
+        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (lowest, highest) = (simplex[0].1, simplex[d].1);
+        if (highest - lowest).abs() <= 1e-10 * lowest.abs().max(1e-300) {
+            break;
+        }
+        let centroid: Vec<f64> = (0..d)
+            .map(|i| simplex[..d].iter().map(|p| p.0[i]).sum::<f64>() / d as f64)
+            .collect();
+        let towards = |t: f64| -> Vec<f64> {
+            clamp(
+                &(0..d)
+                    .map(|i| centroid[i] + t * (simplex[d].0[i] - centroid[i]))
+                    .collect::<Vec<_>>(),
+            )
+        };
+        let reflected = towards(-1.0);
+        let fr = f(&reflected);
+        evaluations += 1;
+        if fr < simplex[0].1 {
+            let expanded = towards(-2.0);
+            let fe = f(&expanded);
+            evaluations += 1;
+            simplex[d] = if fe < fr { (expanded, fe) } else { (reflected, fr) };
+        } else if fr < simplex[d - 1].1 {
+            simplex[d] = (reflected, fr);
+        } else {
+            let contracted = if fr < simplex[d].1 {
+                towards(-0.5)
+            } else {
+                towards(0.5)
+            };
+            let fc = f(&contracted);
+            evaluations += 1;
+            if fc < fr.min(simplex[d].1) {
+                simplex[d] = (contracted, fc);
+            } else {
+                // Shrink towards the best.
+                let first = simplex[0].0.clone();
+                for p in simplex.iter_mut().skip(1) {
+                    p.0 = clamp(
+                        &(0..d)
+                            .map(|i| first[i] + 0.5 * (p.0[i] - first[i]))
+                            .collect::<Vec<_>>(),
+                    );
+                    p.1 = f(&p.0);
+                    evaluations += 1;
+                }
+            }
+        }
+    }
+    simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+    simplex.swap_remove(0)
+}
+
+/// Fits `model`'s coefficients to `train` at `inertia`: the least sum of
+/// squared errors of the predicted post-impact velocities of G and of the
+/// contact point (a refusal counts as no impact), by [`minimise`]: a grid of
+/// 11 values of `e` (frictionless) or 6 × 6 of `(e, f)` (Coulomb); the
+/// bilinear and twist laws start from the Coulomb fit `coulomb` with a grid
+/// of 3 per coordinate. Returns the coefficients and their training score.
+pub fn fit_model(
+    train: &[&Bounce],
+    inertia: f64,
+    model: Model,
+    coulomb: Option<&[f64]>,
+) -> (Vec<f64>, Score) {
+    let mut objective = |p: &[f64]| {
+        let s = score(train, inertia, model, p);
+        s.g + s.c
+    };
+    let bounds = model.bounds();
+    let (p, _) = match model {
+        Model::NoImpact | Model::Authors => (Vec::new(), 0.0),
+        Model::Frictionless => minimise(&mut objective, &bounds, 11, None, 60),
+        Model::Coulomb => minimise(&mut objective, &bounds, 6, None, 120),
+        Model::Bilinear | Model::Twist => {
+            let mut start = coulomb.map_or(vec![0.3, 0.2], <[f64]>::to_vec);
+            start.extend(if model == Model::Bilinear {
+                vec![-1.0]
+            } else {
+                vec![0.0, 0.0]
+            });
+            minimise(&mut objective, &bounds, 3, Some(&start), 200)
+        }
+    };
+    let s = score(train, inertia, model, &p);
+    (p, s)
+}
+
+/// Two folds of the tosses, each physical toss in one: the distinct toss
+/// numbers among `bounces`, shuffled with `seed` (Fisher–Yates) and halved.
+/// Returns each toss's fold (0 or 1).
+pub fn fold_of_tosses(bounces: &[Bounce], seed: u64) -> std::collections::BTreeMap<usize, usize> {
+    let mut ids: Vec<usize> = bounces.iter().map(|b| b.toss).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let mut rng = super::Rng::new(seed);
+    for i in (1..ids.len()).rev() {
+        let j = (rng.next_u64() % (i as u64 + 1)) as usize;
+        ids.swap(i, j);
+    }
+    let half = ids.len() / 2;
+    ids.into_iter()
+        .enumerate()
+        .map(|(i, id)| (id, usize::from(i >= half)))
+        .collect()
+}
+
+/// One model's two-fold prediction of held-out tosses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldOut {
+    pub model: Model,
+    /// The coefficients fitted on each fold's training tosses (fold `k`
+    /// trains on the tosses not in fold `k` and predicts fold `k`).
+    pub coefficients: [Vec<f64>; 2],
+    /// The inertia used in each fold (kg m²): `I₀` fitted ([`fit_inertia`])
+    /// on that fold's training tosses alone.
+    pub inertia: [f64; 2],
+    /// The training score of each fold (single-corner impacts).
+    pub train: [Score; 2],
+    /// The held-out scores by class, both folds pooled: every bounce is
+    /// predicted once, by coefficients (and inertia) fitted on the other
+    /// fold's single-corner impacts.
+    pub corner: Score,
+    pub edge: Score,
+    pub face: Score,
+}
+
+/// The two-fold prediction of held-out tosses for each of `models`: the
+/// tosses of `bounces` (distinct tosses: one copy of each repeat) split by
+/// [`fold_of_tosses`]`(seed)`; in each direction `I₀` and the coefficients
+/// are fitted on the training fold's single-corner impacts and every
+/// held-out bounce is predicted (corner, edge and face impacts, the latter
+/// two at their touching corners' mean).
+pub fn held_out(bounces: &[Bounce], models: &[Model], seed: u64) -> Vec<HeldOut> {
+    let folds = fold_of_tosses(bounces, seed);
+    let part = |k: usize, train: bool, class: Class| -> Vec<&Bounce> {
+        bounces
+            .iter()
+            .filter(|b| (folds[&b.toss] == k) != train && b.class == class)
+            .collect()
+    };
+    let inertia = [0, 1].map(|k| {
+        let train: Vec<Bounce> = part(k, true, Class::Corner).into_iter().cloned().collect();
+        fit_inertia(&train, 0, seed).inertia
+    });
+    let coulomb =
+        [0, 1].map(|k| fit_model(&part(k, true, Class::Corner), inertia[k], Model::Coulomb, None).0);
+    models
+        .iter()
+        .map(|&model| {
+            let fits = [0, 1].map(|k| {
+                let train = part(k, true, Class::Corner);
+                if model == Model::Coulomb {
+                    let s = score(&train, inertia[k], model, &coulomb[k]);
+                    (coulomb[k].clone(), s)
+                } else {
+                    fit_model(&train, inertia[k], model, Some(&coulomb[k]))
+                }
+            });
+            let test = |class: Class| {
+                let [a, b] = [0, 1].map(|k| score(&part(k, false, class), inertia[k], model, &fits[k].0));
+                a.plus(&b)
+            };
+            HeldOut {
+                model,
+                coefficients: [fits[0].0.clone(), fits[1].0.clone()],
+                inertia,
+                train: [fits[0].1, fits[1].1],
+                corner: test(Class::Corner),
+                edge: test(Class::Edge),
+                face: test(Class::Face),
+            }
+        })
+        .collect()
+}
+
+/// An edge impact's edge direction (unit, world, at the impact): from its
+/// first touching corner to its second; `None` for other classes.
+pub fn edge_axis(b: &Bounce) -> Option<[f64; 3]> {
+    let [i, j] = b.corners[..] else { return None };
+    let e = rotate(&b.rotation, sub(CORNERS[j], CORNERS[i]));
+    Some(scale(1.0 / norm(e), e))
+}
+
+/// Components of `v` along the orthonormal axes `(u, (z × u)/|z × u|, z)`:
+/// for an edge impact `u` its edge, the second axis horizontal across it.
+pub fn edge_components(v: [f64; 3], u: [f64; 3]) -> [f64; 3] {
+    let z = [0.0, 0.0, 1.0];
+    let across = cross(z, u);
+    let across = scale(1.0 / norm(across), across);
+    [dot(v, u), dot(v, across), v[2]]
+}
