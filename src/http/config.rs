@@ -79,6 +79,15 @@ pub enum Command {
     },
 }
 
+/// A limit of sweeps at once: 1 to 100,000 (0 would refuse every sweep of
+/// its kind for ever).
+fn sweeps_at_once(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(n) if (1..=100_000).contains(&n) => Ok(n),
+        _ => Err(format!("{text:?} is not a whole number from 1 to 100000")),
+    }
+}
+
 /// Settings of the HTTP service.
 #[derive(Debug, Clone, Args)]
 pub struct ServiceConfig {
@@ -107,12 +116,12 @@ pub struct ServiceConfig {
     /// Buffered sweeps (JSON table, SVG plot) computed at once; more are
     /// refused with 503 and Retry-After. Each holds its whole answer (a
     /// spatial JSON table of the most points: about 220 MiB).
-    #[arg(long, env = "RESTITUTION_MAX_BUFFERED_SWEEPS", default_value_t = 4)]
+    #[arg(long, env = "RESTITUTION_MAX_BUFFERED_SWEEPS", default_value_t = 4, value_parser = sweeps_at_once)]
     pub max_buffered_sweeps: usize,
     /// Streamed sweeps (CSV, NDJSON, Arrow) computed at once; more are
     /// refused with 503 and Retry-After. Each holds a few chunks (up to about
     /// 10 MiB for Arrow to a slow reader).
-    #[arg(long, env = "RESTITUTION_MAX_STREAMED_SWEEPS", default_value_t = 64)]
+    #[arg(long, env = "RESTITUTION_MAX_STREAMED_SWEEPS", default_value_t = 64, value_parser = sweeps_at_once)]
     pub max_streamed_sweeps: usize,
     /// A streamed sweep whose client reads nothing for this long is dropped, in milliseconds.
     #[arg(long, env = "RESTITUTION_SWEEP_STALL_TIMEOUT_MS", default_value_t = 30_000)]

@@ -242,3 +242,21 @@ fn collect_joins_checked_parts_and_refuses_mismatched_ones() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A limit of sweeps at once below 1 is refused when the service starts,
+/// naming the flag (0 would refuse every sweep of its kind).
+#[test]
+fn a_sweep_limit_of_zero_is_refused_at_start() {
+    for flag in ["--max-buffered-sweeps", "--max-streamed-sweeps"] {
+        let output = binary()
+            .args(["serve", "--bind", "127.0.0.1:0", flag, "0"])
+            .output()
+            .expect("the binary runs");
+        assert!(!output.status.success(), "{flag} 0 was accepted");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains(flag) && stderr.contains("from 1 to 100000"),
+            "{stderr}"
+        );
+    }
+}
