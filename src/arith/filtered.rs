@@ -91,9 +91,11 @@ const ACCEPTED_RELATIVE_BOUND: f64 = 0.5 * PROMISED_RELATIVE_ERROR;
 /// than 4096 steps, so far below `2⁻¹⁰` in all).
 const RUNNING_SLACK: f64 = 1.0 + 1.0 / 1024.0;
 
-/// The most a rounding in the subnormal range adds beside `u |h|`: half the
-/// smallest subnormal, rounded up to it.
-const UNDERFLOW: f64 = f64::from_bits(1);
+/// What a rounding in the subnormal range may add beside `u |h|` (at most
+/// 2⁻¹⁰⁷⁵), covered by the smallest normal: a subnormal constant here would
+/// make every operation take the CPU's slow path for subnormal operands
+/// (a microcode assist on x86, about 20× the cost of the whole f64 model).
+const UNDERFLOW: f64 = f64::MIN_POSITIVE;
 
 /// `|x y − h_x h_y| ≤ (|h_x| + E_x) E_y + |h_y| E_x`, plus `E_z` of an added
 /// term. (The true bounds are at most [`RUNNING_SLACK`] times the `e`
