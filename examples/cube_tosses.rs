@@ -373,22 +373,12 @@ fn prediction(distinct: &[Bounce]) {
         );
         for h in &results {
             let s = pick(h);
-            let rel = s.relative();
             println!(
-                "| {} | {} | {} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} ({:.3}) | {:.3} ({:.3}) | {} of {} |",
+                "| {} | {} | {} | {} |",
                 h.model.name(),
                 coefficients(h.model, &h.coefficients[0]),
                 coefficients(h.model, &h.coefficients[1]),
-                s.rms_g(),
-                rel[0],
-                s.rms_c(),
-                rel[1],
-                s.rms_w(),
-                rel[2],
-                s.rms_gc(),
-                rel[3],
-                s.refused,
-                s.n
+                error_cells(&s)
             );
         }
         println!();
@@ -506,21 +496,31 @@ fn prediction(distinct: &[Bounce]) {
     let (coulomb, _) = tosses::fit_model(&corners, inertia, Model::Coulomb, None);
     for model in Model::ALL {
         let (p, s) = tosses::fit_model(&corners, inertia, model, Some(&coulomb));
-        let rel = s.relative();
         println!(
-            "| {} | {} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} ({:.3}) | {:.3} ({:.3}) | {} of {} |",
+            "| {} | {} | {} |",
             model.name(),
             coefficients(model, &p),
-            s.rms_g(),
-            rel[0],
-            s.rms_c(),
-            rel[1],
-            s.rms_w(),
-            rel[2],
-            s.rms_gc(),
-            rel[3],
-            s.refused,
-            s.n
+            error_cells(&s)
         );
     }
+}
+
+/// A score's cells: the RMS errors of G, the contact point, ω and G with the
+/// contact point, each with its fraction of the measured change, and the
+/// refusals.
+fn error_cells(s: &tosses::Score) -> String {
+    let rel = s.relative();
+    format!(
+        "{:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} ({:.3}) | {:.3} ({:.3}) | {} of {}",
+        s.rms_g(),
+        rel[0],
+        s.rms_c(),
+        rel[1],
+        s.rms_w(),
+        rel[2],
+        s.rms_gc(),
+        rel[3],
+        s.refused,
+        s.n
+    )
 }
