@@ -5,7 +5,7 @@
 //!
 //! - `fast` precision evaluates the model in plain `f64`, every value carrying
 //!   a static error bound that each decision is checked against
-//!   (`Filtered`, `src/arith/filtered.rs`): a decision is the exact one, or too close to its tie to
+//!   (`Filtered`, `src/arith/filtered/`): a decision is the exact one, or too close to its tie to
 //!   tell, and then the impact is answered by the exact evaluation. Inputs
 //!   outside 2^±200 ([`in_fast_range`]) and answers whose evaluation leaves
 //!   the f64 range (an output that overflows, a sign that is NaN) are answered
