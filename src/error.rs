@@ -172,13 +172,13 @@ pub enum ImpactError {
         /// The prescribed ratio.
         input: Input,
     },
-    /// A planar-only law asked of a contact in space.
-    #[error(
-        "{input} is a planar law: in space use restitution with friction, impulse_ratio or tangential_restitution"
-    )]
-    PlanarOnly {
+    /// A law, or a combination of laws, that this case does not offer.
+    #[error("{input} is not available here: {reason}")]
+    Unavailable {
         /// The law member.
         input: Input,
+        /// Why.
+        reason: &'static str,
     },
     /// The tangential and twist laws do not single out one combination of branches.
     #[error(
@@ -217,7 +217,7 @@ impl ImpactError {
             | ImpactError::NoImpulse { input }
             | ImpactError::EnergyCreated { input, .. }
             | ImpactError::NoSlipDirection { input }
-            | ImpactError::PlanarOnly { input }
+            | ImpactError::Unavailable { input, .. }
             | ImpactError::NotUnique { input, .. } => Some(*input),
             ImpactError::OutputNotFinite { .. } => None,
         }
@@ -249,7 +249,7 @@ impl ImpactError {
             ImpactError::NoImpulse { .. } => "No impulse solution",
             ImpactError::NoSlipDirection { .. } => "Sliding direction is undefined",
             ImpactError::NotUnique { .. } => "Regime is not unique",
-            ImpactError::PlanarOnly { .. } => "Law is planar only",
+            ImpactError::Unavailable { .. } => "Law is not available here",
             ImpactError::OutputNotFinite { .. } => "Output is not finite",
         }
     }
@@ -270,7 +270,7 @@ impl ImpactError {
             ImpactError::NoImpulse { .. } => "no-impulse-solution",
             ImpactError::NoSlipDirection { .. } => "no-slip-direction",
             ImpactError::NotUnique { .. } => "not-unique",
-            ImpactError::PlanarOnly { .. } => "planar-only",
+            ImpactError::Unavailable { .. } => "law-unavailable",
             ImpactError::OutputNotFinite { .. } => "output-not-finite",
         }
     }

@@ -159,10 +159,30 @@ impl SpatialImpact {
             Law::ImpulseRatio { impulse_ratio, .. } => {
                 in_range(Input::ImpulseRatio, impulse_ratio, 0.0, f64::INFINITY)?;
             }
-            Law::KineticRestitution { .. } => {
-                return Err(ImpactError::PlanarOnly {
-                    input: Input::KineticRestitution,
-                });
+            Law::KineticRestitution {
+                approach_impulse_ratio,
+                rebound_impulse_ratio,
+                ..
+            } => {
+                // Magnitudes in space, opposing the slip (conventions, rule 7).
+                in_range(
+                    Input::ApproachImpulseRatio,
+                    approach_impulse_ratio,
+                    0.0,
+                    f64::INFINITY,
+                )?;
+                in_range(
+                    Input::ReboundImpulseRatio,
+                    rebound_impulse_ratio,
+                    0.0,
+                    f64::INFINITY,
+                )?;
+                if self.torsion.is_some() {
+                    return Err(ImpactError::Unavailable {
+                        input: Input::Torsion,
+                        reason: "the two-phase kinetic law does not combine with the twist law",
+                    });
+                }
             }
             _ => {}
         }
@@ -274,8 +294,8 @@ impl Case for SpatialImpact {
         NormalX => Some(&mut impact.contact.normal[0]),
         NormalY => Some(&mut impact.contact.normal[1]),
         NormalZ => Some(&mut impact.contact.normal[2]),
-        // The planar kinetic law is refused in space ([`SpatialImpact::validate`]).
-        Restitution | Friction | ImpulseRatio | TangentialRestitution => impact.law.input_mut(input),
+        Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
+        | ApproachImpulseRatio | ReboundImpulseRatio => impact.law.input_mut(input),
         TorsionalRestitution => impact.torsion.as_mut().map(|t| &mut t.restitution),
         TorsionalFriction => impact.torsion.as_mut().map(|t| &mut t.friction),
         PitchRadius => impact.torsion.as_mut().map(|t| &mut t.pitch_radius),
@@ -404,7 +424,7 @@ mod tests {
     }
 
     /// The inputs read: body B's only with a body B, the twist law's only
-    /// with one, the kinetic law's never; each input once.
+    /// with one, each law's own coefficients; each input once.
     #[test]
     fn reads_follow_the_bodies_and_laws_present() {
         let twist = Twist {
@@ -413,17 +433,32 @@ mod tests {
             pitch_radius: 0.01,
         };
         let full = impact(Some(body(3.0)), Some(twist));
-        // Every input but the impulse ratio, which tangential restitution does not read.
+        // Every input but the impulse ratio and the kinetic law's, which
+        // tangential restitution does not read.
+        let kinetic = [
+            Input::KineticRestitution,
+            Input::ApproachImpulseRatio,
+            Input::ReboundImpulseRatio,
+        ];
         let all_but_ratio: Vec<Input> = SpatialImpact::INPUTS
             .iter()
             .copied()
-            .filter(|&i| i != Input::ImpulseRatio)
+            .filter(|&i| i != Input::ImpulseRatio && !kinetic.contains(&i))
             .collect();
         assert_eq!(full.reads(), all_but_ratio);
         let barrier = impact(None, None).reads();
         assert_eq!(barrier.len(), all_but_ratio.len() - 16 - 3);
         assert!(!barrier.contains(&Input::MassB) && !barrier.contains(&Input::PitchRadius));
         assert_eq!(full.input(Input::KineticRestitution), None);
+        let mut two_phase = impact(None, None);
+        two_phase.law = Law::KineticRestitution {
+            value: 0.5,
+            approach_impulse_ratio: 0.25,
+            rebound_impulse_ratio: 0.125,
+        };
+        let reads = two_phase.reads();
+        assert_eq!(reads[reads.len() - 3..], kinetic);
+        assert_eq!(two_phase.input(Input::ReboundImpulseRatio), Some(0.125));
         for (i, input) in SpatialImpact::INPUTS.iter().enumerate() {
             assert!(!SpatialImpact::INPUTS[i + 1..].contains(input), "{input:?} twice");
         }

@@ -23,11 +23,16 @@ fn random_law(rng: &mut Rng) -> Law {
     } else {
         rng.unit()
     };
-    match rng.next_u64() % 4 {
+    match rng.next_u64() % 5 {
         0 => Law::Frictionless { restitution: e },
         1 => Law::ImpulseRatio {
             restitution: e,
             impulse_ratio: rng.range(0.0, 1.0),
+        },
+        4 => Law::KineticRestitution {
+            value: e,
+            approach_impulse_ratio: if rng.chance(0.2) { 0.0 } else { rng.range(0.0, 1.0) },
+            rebound_impulse_ratio: if rng.chance(0.3) { 0.0 } else { rng.range(0.0, 1.0) },
         },
         2 => Law::Friction {
             restitution: e,
@@ -132,7 +137,7 @@ fn close(a: f64, b: f64, scale: f64, what: &str, context: &dyn std::fmt::Debug) 
 #[test]
 fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() {
     let mut rng = Rng::new(0x5_9a7e);
-    let (mut answered, mut refused) = (0, 0);
+    let (mut answered, mut refused, mut kinetic) = (0, 0, 0);
     for _ in 0..1500 {
         let lamina = |rng: &mut Rng| {
             let m = rng.log_uniform(-2.0, 3.0);
@@ -154,12 +159,9 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
         };
         let law = random_law(&mut rng);
         let mut plane = BodiesImpact { a, b, contact, law };
-        // The planar ratio is signed along t̂; in space it opposes the slip.
-        if let Law::ImpulseRatio {
-            restitution,
-            impulse_ratio,
-        } = law
-        {
+        // The planar ratios are signed along t̂; in space they oppose the
+        // slip (both phases of the kinetic law along the one direction).
+        if matches!(law, Law::ImpulseRatio { .. } | Law::KineticRestitution { .. }) {
             let Ok(probe) = solve(&plane, Outputs::MINIMAL, Precision::Exact) else {
                 continue;
             };
@@ -167,9 +169,24 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
             if slip == 0.0 {
                 continue;
             }
-            plane.law = Law::ImpulseRatio {
-                restitution,
-                impulse_ratio: -impulse_ratio * slip.signum(),
+            plane.law = match law {
+                Law::ImpulseRatio {
+                    restitution,
+                    impulse_ratio,
+                } => Law::ImpulseRatio {
+                    restitution,
+                    impulse_ratio: -impulse_ratio * slip.signum(),
+                },
+                Law::KineticRestitution {
+                    value,
+                    approach_impulse_ratio,
+                    rebound_impulse_ratio,
+                } => Law::KineticRestitution {
+                    value,
+                    approach_impulse_ratio: -approach_impulse_ratio * slip.signum(),
+                    rebound_impulse_ratio: -rebound_impulse_ratio * slip.signum(),
+                },
+                other => other,
             };
         }
         let lift = |l: &Lamina, rng: &mut Rng| RigidBody {
@@ -204,6 +221,7 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
         ) {
             (Ok(p), Ok(s)) => {
                 answered += 1;
+                kinetic += matches!(law, Law::KineticRestitution { .. }) as usize;
                 let mut pairs = vec![
                     (
                         "u_n",
@@ -261,8 +279,8 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
         }
     }
     assert!(
-        answered > 500 && refused > 100,
-        "answered {answered}, refused {refused}"
+        answered > 500 && refused > 100 && kinetic > 50,
+        "answered {answered} ({kinetic} kinetic), refused {refused}"
     );
 }
 
@@ -468,6 +486,28 @@ fn check_invariants(i: &SpatialImpact, o: &SpatialOutcome) {
                     "U_t",
                     i,
                 );
+            }
+        }
+        (
+            Regime::Prescribed,
+            Law::KineticRestitution {
+                value,
+                approach_impulse_ratio,
+                rebound_impulse_ratio,
+            },
+        ) => {
+            // Both phases along one direction against the slip; A-16's e.
+            if size(o.impulse.tangential) > 0.0 {
+                let mu = (approach_impulse_ratio + value * rebound_impulse_ratio) / (1.0 + value);
+                close(o.impulse_ratio, mu, mu, "μ (kinetic)", i);
+                let along = dot(o.impulse.tangential, cv.initial.tangential);
+                assert!(
+                    along <= 1e-12 * size(o.impulse.tangential) * size(cv.initial.tangential),
+                    "P_t with the slip: {i:?}"
+                );
+            }
+            if value == 0.0 {
+                assert_eq!(o.restitution, 0.0, "{i:?}");
             }
         }
         _ => {}
@@ -745,12 +785,36 @@ fn what_space_cannot_answer_is_refused_naming_the_input() {
             ..
         }
     ));
+    // The kinetic law's ratios are magnitudes in space; it takes no twist law.
     i.law = Law::KineticRestitution {
         value: 0.5,
-        approach_impulse_ratio: 0.0,
-        rebound_impulse_ratio: 0.0,
+        approach_impulse_ratio: 0.1,
+        rebound_impulse_ratio: -0.1,
     };
-    assert!(matches!(refusal(&i), ImpactError::PlanarOnly { .. }));
+    assert!(matches!(
+        refusal(&i),
+        ImpactError::OutOfRange {
+            input: restitution::Input::ReboundImpulseRatio,
+            ..
+        }
+    ));
+    i.law = Law::KineticRestitution {
+        value: 0.5,
+        approach_impulse_ratio: 0.1,
+        rebound_impulse_ratio: 0.1,
+    };
+    i.torsion = Some(Twist {
+        restitution: 0.5,
+        friction: 0.1,
+        pitch_radius: 0.01,
+    });
+    assert!(matches!(
+        refusal(&i),
+        ImpactError::Unavailable {
+            input: restitution::Input::Torsion,
+            ..
+        }
+    ));
     // A prescribed ratio with no slip and a sticking impulse with no tangential part.
     let mut i = ball();
     i.a.velocity = [0.0, 0.0, -10.0];
@@ -765,6 +829,18 @@ fn what_space_cannot_answer_is_refused_naming_the_input() {
             input: restitution::Input::ImpulseRatio
         }
     );
+    // The kinetic law likewise, at the first phase that needs a direction.
+    for (mu_a, mu_r, input) in [
+        (0.3, 0.0, restitution::Input::ApproachImpulseRatio),
+        (0.0, 0.3, restitution::Input::ReboundImpulseRatio),
+    ] {
+        i.law = Law::KineticRestitution {
+            value: 0.5,
+            approach_impulse_ratio: mu_a,
+            rebound_impulse_ratio: mu_r,
+        };
+        assert_eq!(refusal(&i), ImpactError::NoSlipDirection { input });
+    }
     i.law = Law::ImpulseRatio {
         restitution: 0.5,
         impulse_ratio: 0.0,

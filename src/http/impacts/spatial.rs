@@ -7,7 +7,7 @@ use utoipa::ToSchema;
 
 use super::bodies::body_count;
 pub use super::inertia::{InertiaDto, PrincipalDto, QuaternionDto, SphereDto, TensorDto};
-use super::law::law_of;
+use super::law::{KineticRestitutionDto, law_of};
 use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
@@ -99,7 +99,9 @@ pub struct TwistDto {
 /// One point contact in space between two bodies, or one and a fixed barrier:
 /// `restitution` and at most one tangential law (`friction`; `impulse_ratio`,
 /// a magnitude opposing the slip; `tangential_restitution` with `friction`),
-/// none being frictionless; `torsion` adds the twist law.
+/// none being frictionless; or `kinetic_restitution`, the two-phase law, whose
+/// impulse ratios are magnitudes along one direction opposing the slip;
+/// `torsion` adds the twist law (not with `kinetic_restitution`).
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
@@ -121,6 +123,10 @@ pub struct SpatialContactRequest {
     /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
     #[schema(minimum = 0.0, maximum = 1.0, example = 0.75)]
     pub restitution: Option<f64>,
+    /// The two-phase kinetic law instead of `restitution` (Appendix): in space
+    /// both impulse ratios are magnitudes (≥ 0) along one direction opposing
+    /// the initial slip; `restitution` answers the equivalent e.
+    pub kinetic_restitution: Option<KineticRestitutionDto>,
     /// f: Coulomb friction coefficient (≥ 0).
     #[schema(minimum = 0.0, example = 0.6)]
     pub friction: Option<f64>,
@@ -156,7 +162,7 @@ impl TryFrom<&SpatialContactRequest> for SpatialImpact {
             },
             law: law_of(
                 req.restitution,
-                None,
+                req.kinetic_restitution,
                 req.friction,
                 req.impulse_ratio,
                 req.tangential_restitution,
@@ -358,6 +364,7 @@ mod tests {
                 json!({"restitution": 0.5, "impulse_ratio": 0.05}),
                 json!({"restitution": 0.5, "friction": 0.3, "tangential_restitution": 0.2}),
                 json!({"restitution": 0.5, "friction": 0.3, "torsion": torsion}),
+                json!({"kinetic_restitution": {"value": 0.5, "approach_impulse_ratio": 0.2, "rebound_impulse_ratio": 0.1}}),
             ] {
                 let r = request(bodies, law);
                 let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();

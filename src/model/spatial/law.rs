@@ -48,6 +48,25 @@ pub(super) struct Reading {
     pub(super) pointers: (Input, Input),
     /// A prescribed ratio: a zero direction is refused, not dropped.
     pub(super) prescribed: bool,
+    /// The two-phase kinetic law, which the scene answers apart.
+    pub(super) phases: Option<Phases>,
+}
+
+/// How the approach phase of the two-phase law picks its tangential impulse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Approach {
+    /// `|P_t^A| = μ_A P_n^A` opposing the slip.
+    Ratio(f64),
+}
+
+/// The Appendix's two phases in space (conventions, rule 7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Phases {
+    /// `R = P_n^R / P_n^A` (Eq 9).
+    pub(super) r: f64,
+    pub(super) approach: Approach,
+    /// `μ_R ≥ 0`: `|P_t^R| = μ_R P_n^R`, along the approach's direction.
+    pub(super) rebound: f64,
 }
 
 impl Reading {
@@ -60,6 +79,7 @@ impl Reading {
             regimes: (regime, regime),
             pointers: (pointer, pointer),
             prescribed: regime == Regime::Prescribed,
+            phases: None,
         };
         match *law {
             Law::ImpulseRatio {
@@ -82,6 +102,7 @@ impl Reading {
                 regimes: (Regime::Sticking, Regime::Sliding),
                 pointers: (Input::Friction, Input::Friction),
                 prescribed: false,
+                phases: None,
             },
             Law::TangentialRestitution {
                 restitution,
@@ -95,12 +116,26 @@ impl Reading {
                 regimes: (Regime::Restitution, Regime::Sliding),
                 pointers: (Input::TangentialRestitution, Input::Friction),
                 prescribed: false,
+                phases: None,
             },
-            // The kinetic law is planar; validation refuses it in space.
-            Law::Frictionless { restitution }
-            | Law::KineticRestitution {
-                value: restitution, ..
-            } => {
+            Law::KineticRestitution {
+                value,
+                approach_impulse_ratio,
+                rebound_impulse_ratio,
+            } => Reading {
+                phases: Some(Phases {
+                    r: value,
+                    approach: Approach::Ratio(approach_impulse_ratio),
+                    rebound: rebound_impulse_ratio,
+                }),
+                ..single(
+                    value,
+                    approach_impulse_ratio,
+                    Regime::Prescribed,
+                    Input::KineticRestitution,
+                )
+            },
+            Law::Frictionless { restitution } => {
                 let pointer = if twist { Input::Torsion } else { Input::Restitution };
                 single(restitution, 0.0, Regime::Frictionless, pointer)
             }

@@ -33,6 +33,7 @@
 //! where its kept branch (with the same partner) fails; none or several:
 //! refused as not unique (conventions, rules 1–8).
 
+mod kinetic;
 mod law;
 mod scene;
 
@@ -47,6 +48,7 @@ use crate::outcome::{
     SpatialContactVelocity, SpatialImpulse, SpatialOutcome, TorsionalRegime,
 };
 
+use self::kinetic::kinetic;
 use self::law::*;
 use self::scene::*;
 use super::vector::*;
@@ -98,6 +100,9 @@ pub(crate) fn spatial<N: Radical>(
         }
         .into());
     }
+    if let Some(phases) = sc.law.phases {
+        return kinetic(&mut sc, phases, outputs, outcome);
+    }
     let (t, z, found) = sc.choose()?;
     let (regime, pointer) = match t {
         Tangential::Kept => (sc.law.regimes.0, sc.law.pointers.0),
@@ -121,14 +126,7 @@ pub(crate) fn spatial<N: Radical>(
                 map(&sc.ut, |x| one.sub(&et).mul(x)),
             )
         }
-        Tangential::Sliding => {
-            let dun = dot(&du, &sc.n).div(&sc.nu);
-            let dut = axpy(&dun.neg(), &sc.n, &du);
-            (
-                zip(&sc.ut, &dut, |x, y| x.add(y)),
-                zip(&sc.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
-            )
-        }
+        Tangential::Sliding => sc.slip_after(&du),
     };
     let (final_spin, spin_sum) = match (z, sc.twist) {
         (Spin::Restitution, Some(tw)) => {
@@ -137,11 +135,7 @@ pub(crate) fn spatial<N: Radical>(
         }
         _ => (sc.s.add(&dspin), N::of(2.0).mul_add(&sc.s, &dspin)),
     };
-    // work = P·(u + U) + κ (s̃ + S̃), with u + U = (1 − e)(u·n) n/ν + (u_t + U_t).
-    let normal_work = one.sub(&e).mul(&sc.un).mul(&s.pn).div(&sc.nu);
-    let work = s
-        .kappa
-        .mul_add(&spin_sum, &dot(&s.p, &slip_sum).add(&normal_work));
+    let work = sc.work(&s, &e, &slip_sum, &spin_sum);
     if sign(&work)? == Ordering::Greater {
         return Err(ImpactError::EnergyCreated {
             input: pointer,
@@ -149,6 +143,73 @@ pub(crate) fn spatial<N: Radical>(
         }
         .into());
     }
+    let impulse_ratio = match t {
+        Tangential::Kept => sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0),
+        // |P_t| = c P_n exactly, unless there is no direction to slide in.
+        Tangential::Sliding if sign(&norm2(&s.pt))? == Ordering::Equal => 0.0,
+        Tangential::Sliding => out(Output::ImpulseRatio, &N::of(sc.law.c))?,
+    };
+    let critical_impulse_ratio = if outputs.critical_impulse_ratio || regime == Regime::Sticking {
+        let stick = sc.solve(Tangential::Kept, z, 0.0)?;
+        match stick {
+            Some(stick) => sc.ratio(&stick, Output::CriticalImpulseRatio)?,
+            None => None,
+        }
+    } else {
+        None
+    };
+    let answer = Written {
+        s,
+        e,
+        final_ut,
+        final_spin,
+        work,
+        impulse_ratio,
+        critical_impulse_ratio,
+        regime,
+        torsional_regime: match z {
+            Spin::Off => None,
+            Spin::Restitution => Some(TorsionalRegime::Restitution),
+            Spin::Sliding => Some(TorsionalRegime::Sliding),
+        },
+    };
+    write(&sc, answer, outputs, outcome)
+}
+
+/// An answer ready to be written: the impulse and what the law says of it.
+struct Written<N> {
+    s: Solution<N>,
+    /// `e`, or the equivalent `e = −U_n/u_n` of the two-phase law.
+    e: N,
+    final_ut: V3<N>,
+    final_spin: N,
+    /// `P·(u + U) + κ (s̃ + S̃)`, checked `≤ 0`.
+    work: N,
+    impulse_ratio: f64,
+    critical_impulse_ratio: Option<f64>,
+    regime: Regime,
+    torsional_regime: Option<TorsionalRegime>,
+}
+
+/// Writes an answer's outputs to `outcome`, whole or not at all.
+#[inline(always)]
+fn write<N: Radical>(
+    sc: &Scene<'_, N>,
+    answer: Written<N>,
+    outputs: Outputs,
+    outcome: &mut SpatialOutcome,
+) -> Exact<N, ()> {
+    let Written {
+        s,
+        e,
+        final_ut,
+        final_spin,
+        work,
+        impulse_ratio,
+        critical_impulse_ratio,
+        regime,
+        torsional_regime,
+    } = answer;
     let mut bodies = [SpatialBodyOutcome::default(); 2];
     let p2 = norm2(&s.p);
     for (index, b) in sc.bodies.iter().enumerate() {
@@ -206,21 +267,6 @@ pub(crate) fn spatial<N: Radical>(
         y: out(Output::ImpulseY, &s.p[1])?,
         z: out(Output::ImpulseZ, &s.p[2])?,
     };
-    let impulse_ratio = match t {
-        Tangential::Kept => sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0),
-        // |P_t| = c P_n exactly, unless there is no direction to slide in.
-        Tangential::Sliding if sign(&norm2(&s.pt))? == Ordering::Equal => 0.0,
-        Tangential::Sliding => out(Output::ImpulseRatio, &N::of(sc.law.c))?,
-    };
-    let critical_impulse_ratio = if outputs.critical_impulse_ratio || regime == Regime::Sticking {
-        let stick = sc.solve(Tangential::Kept, z, 0.0)?;
-        match stick {
-            Some(stick) => sc.ratio(&stick, Output::CriticalImpulseRatio)?,
-            None => None,
-        }
-    } else {
-        None
-    };
     let energy = if outputs.energy {
         let initial = sc.initial_energy();
         let loss = half::<N>().mul(&work).neg();
@@ -244,11 +290,7 @@ pub(crate) fn spatial<N: Radical>(
         critical_impulse_ratio,
         restitution: out(Output::Restitution, &e)?,
         regime,
-        torsional_regime: match z {
-            Spin::Off => None,
-            Spin::Restitution => Some(TorsionalRegime::Restitution),
-            Spin::Sliding => Some(TorsionalRegime::Sliding),
-        },
+        torsional_regime,
         energy,
     };
     Ok(())

@@ -418,6 +418,23 @@ impl<'a, N: Radical> Scene<'a, N> {
         ])
     }
 
+    /// `(U_t, u_t + U_t)` of an answer that changes `u` by `Δu`.
+    pub(super) fn slip_after(&self, du: &V3<N>) -> (V3<N>, V3<N>) {
+        let dun = dot(du, &self.n).div(&self.nu);
+        let dut = axpy(&dun.neg(), &self.n, du);
+        (
+            zip(&self.ut, &dut, |x, y| x.add(y)),
+            zip(&self.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
+        )
+    }
+
+    /// The work `P·(u + U) + κ (s̃ + S̃)` (`−2 T_L`), with
+    /// `u + U = (1 − e)(u·n) n/ν + (u_t + U_t)` (Kelvin and Tait, as Eq 8).
+    pub(super) fn work(&self, s: &Solution<N>, e: &N, slip_sum: &V3<N>, spin_sum: &N) -> N {
+        let normal_work = N::of(1.0).sub(e).mul(&self.un).mul(&s.pn).div(&self.nu);
+        s.kappa.mul_add(spin_sum, &dot(&s.p, slip_sum).add(&normal_work))
+    }
+
     /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
     /// adjugate and the Schur complement of `W`.
     pub(super) fn max_loss(&self) -> N {

@@ -1,0 +1,143 @@
+//! The Appendix's two-phase kinetic law in space (Eqs 9–13 and A-1…A-16 with
+//! `Δu = W P`; conventions, rule 7). The approach impulse `P^A` ends the
+//! approach (`U_n = 0`); the rebound adds `P^R` with `P^R·n = R P^A·n`. Both
+//! phases' tangential impulses act along one direction `w`, opposing the
+//! initial slip (`w = −u_t`; where `u_t = 0`, the approach's sticking
+//! impulse's `P_t`, as the prescribed ratio's rule 4), with magnitudes `μ_A`
+//! and `μ_R` times their normal ones:
+//!
+//! ```text
+//! P^A = α (n + μ_A ρ w),  P^R = R α (n + μ_R ρ w),  ρ = √(ν/|w|²),
+//! α = −u·n / D_A,  D = nᵀ W (n + μ ρ w),  e = −U_n/u_n = R D_R / D_A (A-16).
+//! ```
+//!
+//! One fixed direction keeps one root per answer (the sliding law's `ρ`),
+//! and in a planar scene it is the planar law with `μ_R` of `μ_A`'s sign.
+
+use super::*;
+
+/// The answer of the two-phase law: regime `prescribed`, no couple.
+#[inline(always)]
+pub(super) fn kinetic<N: Radical>(
+    sc: &mut Scene<'_, N>,
+    phases: Phases,
+    outputs: Outputs,
+    outcome: &mut SpatialOutcome,
+) -> Exact<N, ()> {
+    let Approach::Ratio(mu_a) = phases.approach;
+    let (r, mu_r) = (phases.r, phases.rebound);
+    let rebound = r > 0.0;
+    let refuse = |error: ImpactError| -> Exact<N, ()> { Err(Fail::Refused(error)) };
+    let zero = N::of(0.0);
+    // The direction: against the slip, or the approach's sticking impulse
+    // (W P = −u, ending with U = 0) where there is no slip.
+    let slip = norm2(&sc.ut);
+    let w = if sign(&slip)? == Ordering::Greater {
+        Some((map(&sc.ut, |x| x.neg()), slip))
+    } else {
+        let stick = map(&sym_mul(&sc.adj, &sc.u), |x| x.div(&sc.det).neg());
+        let stick = sc.solution(stick, zero.clone());
+        let size = norm2(&stick.pt);
+        (sign(&size)? == Ordering::Greater).then_some((stick.pt, size))
+    };
+    if w.is_none() {
+        if mu_a > 0.0 {
+            return refuse(ImpactError::NoSlipDirection {
+                input: Input::ApproachImpulseRatio,
+            });
+        }
+        if rebound && mu_r > 0.0 {
+            return refuse(ImpactError::NoSlipDirection {
+                input: Input::ReboundImpulseRatio,
+            });
+        }
+    }
+    // ρ w, the tangential direction scaled to |n|, where a phase uses it.
+    let along = match &w {
+        Some((w, size)) if mu_a > 0.0 || (rebound && mu_r > 0.0) => {
+            let rho = sc.nu.div(size).sqrt().map_err(Fail::Undecided)?;
+            Some(map(w, |x| rho.mul(x)))
+        }
+        _ => None,
+    };
+    // D (scaled by ν) = nᵀ W n + μ (W n)·(ρ w).
+    let wn = sym_mul(&sc.w_matrix, &sc.n);
+    let nwn = dot(&sc.n, &wn);
+    let coefficient = |mu: f64| match &along {
+        Some(a) if mu > 0.0 => N::of(mu).mul_add(&dot(&wn, a), &nwn),
+        _ => nwn.clone(),
+    };
+    let d_a = coefficient(mu_a);
+    if sign(&d_a)? != Ordering::Greater {
+        return refuse(ImpactError::NoImpulse {
+            input: Input::ApproachImpulseRatio,
+        });
+    }
+    let d_r = coefficient(mu_r);
+    if rebound && sign(&d_r)? != Ordering::Greater {
+        return refuse(ImpactError::NoImpulse {
+            input: Input::ReboundImpulseRatio,
+        });
+    }
+    let alpha = sc.un.neg().div(&d_a);
+    let beta = N::of(r).mul(&alpha);
+    let e = if rebound {
+        N::of(r).mul(&d_r.div(&d_a))
+    } else {
+        zero.clone()
+    };
+    // P = (α + β) n + λ ρ w, λ = μ_A α + μ_R β.
+    let lambda = N::of(mu_a).mul_add(&alpha, &N::of(mu_r).mul(&beta));
+    let normal = alpha.add(&beta);
+    let pt = match &along {
+        Some(a) => map(a, |x| lambda.mul(x)),
+        None => [zero.clone(), zero.clone(), zero.clone()],
+    };
+    let s = Solution {
+        p: axpy(&normal, &sc.n, &pt),
+        pn: normal.mul(&sc.nu),
+        pt,
+        kappa: zero.clone(),
+    };
+    let du = sym_mul(&sc.w_matrix, &s.p);
+    let (final_ut, slip_sum) = sc.slip_after(&du);
+    let work = sc.work(&s, &e, &slip_sum, &zero);
+    if sign(&work)? == Ordering::Greater {
+        return refuse(ImpactError::EnergyCreated {
+            input: Input::KineticRestitution,
+            energy_loss: -0.5 * work.approx(),
+        });
+    }
+    // |P_t| / P_n = (μ_A + R μ_R) / (1 + R) along the one direction.
+    let impulse_ratio = if along.is_some() {
+        let one = N::of(1.0);
+        let ratio = N::of(r)
+            .mul_add(&N::of(mu_r), &N::of(mu_a))
+            .div(&one.add(&N::of(r)));
+        out(Output::ImpulseRatio, &ratio)?
+    } else {
+        0.0
+    };
+    // μ_c of the sticking impulse with the equivalent e (rule 5).
+    let critical_impulse_ratio = if outputs.critical_impulse_ratio {
+        let q = N::of(1.0).add(&e).mul(&sc.un).neg();
+        let target = axpy(&q.div(&sc.nu), &sc.n, &map(&sc.ut, |x| x.neg()));
+        let stick = map(&sym_mul(&sc.adj, &target), |x| x.div(&sc.det));
+        sc.ratio(&sc.solution(stick, zero), Output::CriticalImpulseRatio)?
+    } else {
+        None
+    };
+    let final_spin = sc.s.add(&dot(&sc.w, &s.p));
+    let answer = Written {
+        s,
+        e,
+        final_ut,
+        final_spin,
+        work,
+        impulse_ratio,
+        critical_impulse_ratio,
+        regime: Regime::Prescribed,
+        torsional_regime: None,
+    };
+    write(sc, answer, outputs, outcome)
+}
