@@ -51,6 +51,21 @@ pub enum Law {
         /// `μ_R = P_t^R / P_n^R`.
         rebound_impulse_ratio: f64,
     },
+    /// The two-phase law with Coulomb friction in the approach phase (in
+    /// space only): the approach sticks when the impulse that ends it with
+    /// `U = 0` has `|P_t| ≤ f_A P_n`, else slides with `|P_t| = f_A P_n`; the
+    /// rebound is `R` times its normal impulse with ratio `μ_R` along the
+    /// approach's tangential direction. With `μ_R = 0` it is the contact of
+    /// time-stepping engines (friction capped by the compression impulse,
+    /// restitution a frictionless normal impulse).
+    KineticFriction {
+        /// `R ∈ [0, 1]`.
+        value: f64,
+        /// `f_A ≥ 0`.
+        approach_friction: f64,
+        /// `μ_R ≥ 0`.
+        rebound_impulse_ratio: f64,
+    },
 }
 
 /// The body of a planar impact.

@@ -106,6 +106,8 @@ quantities! {
         KineticRestitution => ("R", "kinetic coefficient of restitution", "/kinetic_restitution/value", "1"),
         /// Approach-phase impulse ratio `μ_A`.
         ApproachImpulseRatio => ("μ_A", "approach impulse ratio", "/kinetic_restitution/approach_impulse_ratio", "1"),
+        /// Approach-phase Coulomb friction coefficient `f_A` (in space).
+        ApproachFriction => ("f_A", "approach friction coefficient", "/kinetic_restitution/approach_friction", "1"),
         /// Rebound-phase impulse ratio `μ_R`.
         ReboundImpulseRatio => ("μ_R", "rebound impulse ratio", "/kinetic_restitution/rebound_impulse_ratio", "1"),
         /// Moment of inertia about the normal axis `I_n`.

@@ -73,7 +73,7 @@ impl BodiesImpact {
         if self.contact.normal[0] == 0.0 && self.contact.normal[1] == 0.0 {
             return Err(ImpactError::ZeroVector { input: Input::Normal });
         }
-        let law = self.law.validate()?;
+        let law = self.law.validate_planar()?;
         let fast = approach::<f64>(self);
         let certain = fast.is_finite() && fast.abs() > self.approach_error_bound();
         let approaching = if certain {

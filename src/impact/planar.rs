@@ -57,7 +57,33 @@ impl Law {
                 approach_impulse_ratio: finite(Input::ApproachImpulseRatio, approach_impulse_ratio)?,
                 rebound_impulse_ratio: finite(Input::ReboundImpulseRatio, rebound_impulse_ratio)?,
             },
+            Law::KineticFriction {
+                value,
+                approach_friction,
+                rebound_impulse_ratio,
+            } => Law::KineticFriction {
+                value: in_range(Input::KineticRestitution, value, 0.0, 1.0)?,
+                approach_friction: in_range(Input::ApproachFriction, approach_friction, 0.0, f64::INFINITY)?,
+                rebound_impulse_ratio: in_range(
+                    Input::ReboundImpulseRatio,
+                    rebound_impulse_ratio,
+                    0.0,
+                    f64::INFINITY,
+                )?,
+            },
         })
+    }
+
+    /// [`Law::validate`] for the plane, which has no Coulomb approach phase.
+    pub(super) fn validate_planar(&self) -> Result<Law> {
+        match self.validate()? {
+            Law::KineticFriction { .. } => Err(ImpactError::Unavailable {
+                input: Input::ApproachFriction,
+                reason: "Coulomb friction within the approach phase is a law of the contact in space; \
+                         in the plane give approach_impulse_ratio",
+            }),
+            law => Ok(law),
+        }
     }
 
     /// The slot of a coefficient this law reads.
@@ -83,7 +109,10 @@ impl Law {
                 },
                 Input::TangentialRestitution,
             ) => Some(tangential_restitution),
-            (Law::KineticRestitution { value, .. }, Input::KineticRestitution) => Some(value),
+            (
+                Law::KineticRestitution { value, .. } | Law::KineticFriction { value, .. },
+                Input::KineticRestitution,
+            ) => Some(value),
             (
                 Law::KineticRestitution {
                     approach_impulse_ratio,
@@ -92,7 +121,17 @@ impl Law {
                 Input::ApproachImpulseRatio,
             ) => Some(approach_impulse_ratio),
             (
+                Law::KineticFriction {
+                    approach_friction, ..
+                },
+                Input::ApproachFriction,
+            ) => Some(approach_friction),
+            (
                 Law::KineticRestitution {
+                    rebound_impulse_ratio,
+                    ..
+                }
+                | Law::KineticFriction {
                     rebound_impulse_ratio,
                     ..
                 },
@@ -125,6 +164,11 @@ impl Law {
                 approach_impulse_ratio,
                 rebound_impulse_ratio,
             } => [value, approach_impulse_ratio, rebound_impulse_ratio],
+            Law::KineticFriction {
+                value,
+                approach_friction,
+                rebound_impulse_ratio,
+            } => [value, approach_friction, rebound_impulse_ratio],
         }
     }
 
@@ -136,6 +180,7 @@ impl Law {
             Law::Friction { .. } => "Coulomb friction",
             Law::TangentialRestitution { .. } => "tangential restitution",
             Law::KineticRestitution { .. } => "two-phase kinetic restitution",
+            Law::KineticFriction { .. } => "two-phase kinetic restitution with a Coulomb approach",
         }
     }
 }
@@ -227,7 +272,7 @@ fn law_input(law: &Law) -> Input {
         Law::Frictionless { .. } => Input::Restitution,
         Law::ImpulseRatio { .. } => Input::ImpulseRatio,
         Law::Friction { .. } | Law::TangentialRestitution { .. } => Input::Friction,
-        Law::KineticRestitution { .. } => Input::KineticRestitution,
+        Law::KineticRestitution { .. } | Law::KineticFriction { .. } => Input::KineticRestitution,
     }
 }
 
@@ -362,7 +407,7 @@ impl Case for PlanarImpact {
         );
         Fixed {
             scene: (rigid && !scene_swept).then(|| self.scene()),
-            law: (rigid && !law_swept).then(|| self.law.validate()),
+            law: (rigid && !law_swept).then(|| self.law.validate_planar()),
         }
     }
 
@@ -403,7 +448,7 @@ impl Case for PlanarImpact {
                 };
                 let law = match &fixed.law {
                     Some(law) => law.clone(),
-                    None => self.law.validate(),
+                    None => self.law.validate_planar(),
                 };
                 match law {
                     Ok(law) => evaluate(

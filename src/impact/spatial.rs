@@ -159,6 +159,12 @@ impl SpatialImpact {
             Law::ImpulseRatio { impulse_ratio, .. } => {
                 in_range(Input::ImpulseRatio, impulse_ratio, 0.0, f64::INFINITY)?;
             }
+            Law::KineticFriction { .. } if self.torsion.is_some() => {
+                return Err(ImpactError::Unavailable {
+                    input: Input::Torsion,
+                    reason: "the two-phase kinetic law does not combine with the twist law",
+                });
+            }
             Law::KineticRestitution {
                 approach_impulse_ratio,
                 rebound_impulse_ratio,
@@ -295,7 +301,7 @@ impl Case for SpatialImpact {
         NormalY => Some(&mut impact.contact.normal[1]),
         NormalZ => Some(&mut impact.contact.normal[2]),
         Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
-        | ApproachImpulseRatio | ReboundImpulseRatio => impact.law.input_mut(input),
+        | ApproachImpulseRatio | ApproachFriction | ReboundImpulseRatio => impact.law.input_mut(input),
         TorsionalRestitution => impact.torsion.as_mut().map(|t| &mut t.restitution),
         TorsionalFriction => impact.torsion.as_mut().map(|t| &mut t.friction),
         PitchRadius => impact.torsion.as_mut().map(|t| &mut t.pitch_radius),
@@ -438,6 +444,7 @@ mod tests {
         let kinetic = [
             Input::KineticRestitution,
             Input::ApproachImpulseRatio,
+            Input::ApproachFriction,
             Input::ReboundImpulseRatio,
         ];
         let all_but_ratio: Vec<Input> = SpatialImpact::INPUTS
@@ -457,7 +464,7 @@ mod tests {
             rebound_impulse_ratio: 0.125,
         };
         let reads = two_phase.reads();
-        assert_eq!(reads[reads.len() - 3..], kinetic);
+        assert_eq!(reads[reads.len() - 3..], [kinetic[0], kinetic[1], kinetic[3]]);
         assert_eq!(two_phase.input(Input::ReboundImpulseRatio), Some(0.125));
         for (i, input) in SpatialImpact::INPUTS.iter().enumerate() {
             assert!(!SpatialImpact::INPUTS[i + 1..].contains(input), "{input:?} twice");

@@ -187,6 +187,12 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
             outputs,
             out,
         ),
+        // Refused by the planar validation (`Law::validate_planar`).
+        Law::KineticFriction { .. } => Err(ImpactError::Unavailable {
+            input: Input::ApproachFriction,
+            reason: "Coulomb friction within the approach phase is a law of the contact in space",
+        }
+        .into()),
     }
 }
 

@@ -198,6 +198,8 @@ pub enum Refusal {
     NotApproaching,
     NoImpulseSolution,
     CreatesEnergy,
+    /// A law the plane does not offer (the Coulomb approach phase).
+    Unavailable,
 }
 
 impl Refusal {
@@ -206,6 +208,7 @@ impl Refusal {
             Refusal::NotApproaching => "not-approaching",
             Refusal::NoImpulseSolution => "no-impulse-solution",
             Refusal::CreatesEnergy => "creates-energy",
+            Refusal::Unavailable => "law-unavailable",
         }
     }
 }
@@ -317,6 +320,7 @@ pub fn solve_scene(s: &Scene, law: Law) -> Result<Answer, Refusal> {
             }
             finish(s, x, e, r, "prescribed", kappa)
         }
+        Law::KineticFriction { .. } => Err(Refusal::Unavailable),
     }
 }
 

@@ -737,6 +737,17 @@ struct Reading {
     c: R,
     prescribed: bool,
     slide_regime: &'static str,
+    /// The two-phase law, evaluated apart ([`Evaluator::run_kinetic`]).
+    kinetic: Option<KineticR>,
+}
+
+/// The two-phase law: `R`, the approach's ratio `μ_A` or Coulomb `f_A`, and `μ_R`.
+#[derive(Clone, Debug)]
+struct KineticR {
+    r: R,
+    approach: R,
+    coulomb: bool,
+    rebound: R,
 }
 
 impl Reading {
@@ -747,6 +758,16 @@ impl Reading {
             c: r(c),
             prescribed: regime == "prescribed",
             slide_regime: regime,
+            kinetic: None,
+        };
+        let kinetic = |value: f64, approach: f64, coulomb: bool, rebound: f64| Reading {
+            kinetic: Some(KineticR {
+                r: r(value),
+                approach: r(approach),
+                coulomb,
+                rebound: r(rebound),
+            }),
+            ..single(value, 0.0, "prescribed")
         };
         match *law {
             Law::Frictionless { restitution } => single(restitution, 0.0, "frictionless"),
@@ -763,6 +784,7 @@ impl Reading {
                 c: r(friction),
                 prescribed: false,
                 slide_regime: "sliding",
+                kinetic: None,
             },
             Law::TangentialRestitution {
                 restitution,
@@ -774,8 +796,18 @@ impl Reading {
                 c: r(friction),
                 prescribed: false,
                 slide_regime: "sliding",
+                kinetic: None,
             },
-            Law::KineticRestitution { .. } => panic!("planar only"),
+            Law::KineticRestitution {
+                value,
+                approach_impulse_ratio,
+                rebound_impulse_ratio,
+            } => kinetic(value, approach_impulse_ratio, false, rebound_impulse_ratio),
+            Law::KineticFriction {
+                value,
+                approach_friction,
+                rebound_impulse_ratio,
+            } => kinetic(value, approach_friction, true, rebound_impulse_ratio),
         }
     }
 }
@@ -843,6 +875,28 @@ pub struct Sizes {
     pub t_max: f64,
     /// The Jacobi-scaled condition number of the contact matrix.
     pub kappa: f64,
+}
+
+/// What an answer hands to [`Evaluator::finish`].
+struct Parts<'a> {
+    sol: &'a Sol,
+    finals: &'a Vec<FinalState>,
+    /// `U` and `S̃`.
+    uf: (&'a V3, &'a R),
+    /// `e`, or the two-phase law's equivalent `e`.
+    e: &'a R,
+    regime: &'static str,
+    z: Zb,
+    /// Per body `|ΔV|` as `x √y`.
+    delta_v: Vec<(R, R)>,
+    /// `|P_t|/P_n` as `x √y`.
+    ratio: (R, R),
+    /// `μ_c` as `x √y`.
+    critical: Option<(R, R)>,
+    /// The sticking `|P·n|` (f64, a size).
+    pn_c: f64,
+    inside_margin: f64,
+    critical_margin: f64,
 }
 
 /// Solutions found: the branches, the solution, whether it depends on a
@@ -1133,6 +1187,9 @@ impl Evaluator<'_> {
         if !s.un.is_negative() {
             return Err(Refusal::NotApproaching);
         }
+        if let Some(k) = self.law.kinetic.clone() {
+            return self.run_kinetic(&k);
+        }
         let (t, z) = self.choose()?;
         let et = match (t, &self.law.kept) {
             (Tb::Kept, Some(k)) => k.1.clone(),
@@ -1165,9 +1222,205 @@ impl Evaluator<'_> {
         if z == Zb::Off {
             assert!(sol.kappa.is_zero());
         }
-        let t_final = s.kinetic_after(&finals);
+        let one = R::one();
+        let nu = &s.nu;
+        // |ΔV| = |P|/m; sliding: |P| = λ |d| with |d|² = ν (1 + c²) exactly.
+        let delta_v = s
+            .bodies
+            .iter()
+            .map(|b| match t {
+                Tb::Kept => (&one / &b.m, dot(&sol.p, &sol.p)),
+                Tb::Sliding => (&sol.lambda / &b.m, nu * (&one + &sol.c_root * &sol.c_root)),
+            })
+            .collect();
+        // |P_t|/P_n = √(ν |P_t|²)/(P·n); sliding: c exactly (0 when d = n).
+        let ratio = match t {
+            Tb::Kept => (&one / &sol.pn, nu * dot(&sol.pt, &sol.pt)),
+            Tb::Sliding => (sol.c_root.clone(), one.clone()),
+        };
+        // μ_c = |P_t|/|P_n| of the sticking impulse with the answer's twist
+        // branch: the magnitude the cap compares with f (sticking holds its
+        // cap exactly when f ≥ μ_c), so positive also where that P_n < 0.
+        self.local = f64::INFINITY;
+        let stick = self.solve(Tb::Kept, z, &R::zero())?;
+        let critical_margin = self.local;
+        let critical = match &stick {
+            Some(st) if !st.pn.is_zero() => Some((&one / st.pn.abs(), nu * dot(&st.pt, &st.pt))),
+            _ => None,
+        };
+        let e = self.law.e.clone();
+        self.finish(Parts {
+            sol: &sol,
+            finals: &finals,
+            uf: (&uf, &sf),
+            e: &e,
+            regime,
+            z,
+            delta_v,
+            ratio,
+            critical,
+            pn_c: stick.as_ref().map_or(0.0, |st| st.pn.to_f64().abs()),
+            inside_margin,
+            critical_margin,
+        })
+    }
+
+    /// The two-phase law from its own equations: the approach `P^A` (the
+    /// sticking impulse `W P = −u` where Coulomb's cap holds it, else
+    /// `λ (n + μ_A t)` with `(W P^A)·n = −u·n`), then `P^R = λ_R (n + μ_R t)`
+    /// with `P^R·n = R P^A·n`, `t = ρ w` one direction for both (`w = −u_t`,
+    /// or the sticking impulse's `P_t`; that `P_t` itself after sticking).
+    /// Outputs with a root are enclosed by the root's bounds, those that are
+    /// roots of such numbers by their own roots' bounds (to about 2⁻¹⁹⁰).
+    fn run_kinetic(&mut self, k: &KineticR) -> Result<Eval, Refusal> {
+        let s = self.s;
+        let nu = &s.nu;
+        let one = R::one();
+        let w_rows = |x: &V3| -> V3 {
+            std::array::from_fn(|i| (0..3).fold(R::zero(), |acc, j| acc + &s.resp[i][j] * &x[j]))
+        };
+        let a3: Vec<Vec<R>> = (0..3).map(|i| s.resp[i][..3].to_vec()).collect();
+        let x = gauss(a3, s.u.iter().map(|x| -x).collect()).expect("W is positive definite");
+        let stick_p = [x[0].clone(), x[1].clone(), x[2].clone()];
+        let stick_pn = dot(&stick_p, &s.n);
+        let stick_pt = sub(&stick_p, &scale(&(&stick_pn / nu), &s.n));
+        let kept = k.coulomb && !stick_pn.is_zero() && {
+            let cap = &k.approach * &k.approach * &stick_pn * &stick_pn;
+            let value = nu * dot(&stick_pt, &stick_pt);
+            self.note(&cap, &value);
+            value <= cap
+        };
+        let slip = dot(&s.ut, &s.ut);
+        self.note_sign(&slip, &dot(&s.u, &s.u));
+        let w = if !kept && slip.is_positive() {
+            Some([-&s.ut[0], -&s.ut[1], -&s.ut[2]])
+        } else if stick_pt.iter().any(|x| !x.is_zero()) {
+            Some(stick_pt.clone())
+        } else {
+            None
+        };
+        let rebound = k.r.is_positive();
+        let rebound_slides = rebound && k.rebound.is_positive();
+        if w.is_none() && ((!k.coulomb && k.approach.is_positive()) || rebound_slides) {
+            return Err(Refusal::NoSlipDirection);
+        }
+        let sliding = !kept && k.approach.is_positive();
+        let t = match &w {
+            Some(w) if sliding || rebound_slides => {
+                let rho = self.root(&(nu / dot(w, w)));
+                Some(scale(&rho, w))
+            }
+            _ => None,
+        };
+        let direction = |mu: &R| match &t {
+            Some(t) if mu.is_positive() => add(&s.n, &scale(mu, t)),
+            _ => s.n.clone(),
+        };
+        let pa = if kept {
+            if !stick_pn.is_positive() {
+                return Err(Refusal::NoImpulse);
+            }
+            stick_p
+        } else {
+            let d = direction(&if sliding { k.approach.clone() } else { R::zero() });
+            let normal = dot(&s.n, &w_rows(&d));
+            if !normal.is_positive() {
+                return Err(Refusal::NoImpulse);
+            }
+            scale(&(-&s.un / normal), &d)
+        };
+        let d_r = direction(&k.rebound);
+        if rebound && !dot(&s.n, &w_rows(&d_r)).is_positive() {
+            return Err(Refusal::NoImpulse);
+        }
+        let pa_n = dot(&pa, &s.n);
+        let pr = scale(&(&k.r * &pa_n / nu), &d_r);
+        let p = add(&pa, &pr);
+        // Self-checks: the approach ends at U·n = 0; the rebound is R times it.
+        let (ua, _) = s.contact_after(&s.finals(&pa, &R::zero()));
+        assert!(dot(&ua, &s.n).is_zero(), "U·n = 0 after the approach");
+        assert!(dot(&pr, &s.n) == &k.r * &pa_n, "P_n^R = R P_n^A");
+        let pn = dot(&p, &s.n);
+        let pt = sub(&p, &scale(&(&pn / nu), &s.n));
+        let sol = Sol {
+            p: p.clone(),
+            kappa: R::zero(),
+            pn,
+            pt,
+            lambda: R::zero(),
+            c_root: R::zero(),
+        };
+        let finals = s.finals(&p, &R::zero());
+        let (uf, sf) = s.contact_after(&finals);
+        let e = -(dot(&uf, &s.n) / &s.un);
+        let rooted = t.is_some();
+        // x √y, or with a root inside y, the root's bounds.
+        let mut root_form = |x: R, y: R| {
+            if rooted {
+                (x * self.root(&y), one.clone())
+            } else {
+                (x, y)
+            }
+        };
+        let delta_v = s
+            .bodies
+            .iter()
+            .map(|b| root_form(&one / &b.m, dot(&p, &p)))
+            .collect();
+        let ratio = root_form(&one / &sol.pn, nu * dot(&sol.pt, &sol.pt));
+        // μ_c: the sticking impulse with the equivalent e (rule 5).
+        let target = sub(&scale(&(-((&one + &e) * &s.un) / nu), &s.n), &s.ut);
+        let a3: Vec<Vec<R>> = (0..3).map(|i| s.resp[i][..3].to_vec()).collect();
+        let x = gauss(a3, target.to_vec()).expect("W is positive definite");
+        let c_p = [x[0].clone(), x[1].clone(), x[2].clone()];
+        let c_pn = dot(&c_p, &s.n);
+        let c_pt = sub(&c_p, &scale(&(&c_pn / nu), &s.n));
+        let critical = (!c_pn.is_zero()).then(|| root_form(&one / c_pn.abs(), nu * dot(&c_pt, &c_pt)));
+        let regime = match (k.coulomb, kept) {
+            (false, _) => "prescribed",
+            (true, true) => "sticking",
+            (true, false) => "sliding",
+        };
+        self.finish(Parts {
+            sol: &sol,
+            finals: &finals,
+            uf: (&uf, &sf),
+            e: &e,
+            regime,
+            z: Zb::Off,
+            delta_v,
+            ratio,
+            critical,
+            pn_c: c_pn.to_f64().abs(),
+            inside_margin: f64::INFINITY,
+            critical_margin: f64::INFINITY,
+        })
+    }
+
+    /// The checks and outputs every answer shares.
+    fn finish(&mut self, parts: Parts<'_>) -> Result<Eval, Refusal> {
+        let s = self.s;
+        let Parts {
+            sol,
+            finals,
+            uf: (uf, sf),
+            e,
+            regime,
+            z,
+            delta_v,
+            ratio,
+            critical,
+            pn_c,
+            inside_margin,
+            critical_margin,
+        } = parts;
+        let finals = finals.as_slice();
+        let ufn = dot(uf, &s.n);
+        let uft = sub(uf, &scale(&(&ufn / &s.nu), &s.n));
+        let sf = sf.clone();
+        let t_final = s.kinetic_after(finals);
         let t_loss = &s.t_initial - &t_final;
-        let work = dot(&sol.p, &add(&s.u, &uf)) + &sol.kappa * (&s.s + &sf);
+        let work = dot(&sol.p, &add(&s.u, uf)) + &sol.kappa * (&s.s + &sf);
         assert!(t_loss == -(half() * work), "T_L in work form");
         self.note_sign(&t_loss, &s.t_initial);
         if t_loss.is_negative() {
@@ -1185,7 +1438,7 @@ impl Evaluator<'_> {
                 y: y.clone(),
             })
         };
-        for (k, (b, f)) in s.bodies.iter().zip(&finals).enumerate() {
+        for (k, (f, (x, y))) in finals.iter().zip(delta_v).enumerate() {
             for i in 0..3 {
                 put(format!("bodies[{k}].velocity[{i}]"), f.v[i].clone(), &one);
                 put(format!("bodies[{k}].angular_velocity[{i}]"), f.w[i].clone(), &one);
@@ -1196,11 +1449,6 @@ impl Evaluator<'_> {
                     &one,
                 );
             }
-            // |ΔV| = |P|/m; sliding: |P| = λ |d| with |d|² = ν (1 + c²) exactly.
-            let (x, y) = match t {
-                Tb::Kept => (&one / &b.m, dot(&sol.p, &sol.p)),
-                Tb::Sliding => (&sol.lambda / &b.m, nu * (&one + &sol.c_root * &sol.c_root)),
-            };
             put(format!("bodies[{k}].delta_v"), x, &y);
         }
         put("contact_velocity.initial.normal".into(), &s.un / nu, nu);
@@ -1227,28 +1475,13 @@ impl Evaluator<'_> {
         for (i, c) in ["x", "y", "z"].iter().enumerate() {
             put(format!("impulse.{c}"), sol.p[i].clone(), &one);
         }
-        // |P_t|/P_n = √(ν |P_t|²)/(P·n); sliding: c exactly (0 when d = n).
-        let (x, y) = match t {
-            Tb::Kept => (&one / &sol.pn, nu * dot(&sol.pt, &sol.pt)),
-            Tb::Sliding => (sol.c_root.clone(), one.clone()),
-        };
-        put("impulse_ratio".into(), x, &y);
-        put("restitution".into(), self.law.e.clone(), &one);
+        put("impulse_ratio".into(), ratio.0, &ratio.1);
+        put("restitution".into(), e.clone(), &one);
         put("energy.initial".into(), s.t_initial.clone(), &one);
         put("energy.final".into(), t_final.clone(), &one);
         put("energy.loss".into(), t_loss.clone(), &one);
         put("energy.max_loss".into(), t_max.clone(), &one);
         put("energy.normalized_loss".into(), &t_loss / &t_max, &one);
-        // μ_c = |P_t|/|P_n| of the sticking impulse with the answer's twist
-        // branch: the magnitude the cap compares with f (sticking holds its
-        // cap exactly when f ≥ μ_c), so positive also where that P_n < 0.
-        self.local = f64::INFINITY;
-        let stick = self.solve(Tb::Kept, z, &R::zero())?;
-        let critical_margin = self.local;
-        let critical = match &stick {
-            Some(st) if !st.pn.is_zero() => Some((&one / st.pn.abs(), nu * dot(&st.pt, &st.pt))),
-            _ => None,
-        };
         let norm = nu.to_f64().sqrt();
         let sizes = Sizes {
             v: finals
@@ -1271,7 +1504,7 @@ impl Evaluator<'_> {
             p: inf(&sol.p),
             couple: sol.kappa.to_f64().abs() * norm,
             pn: sol.pn.to_f64() / norm,
-            pn_c: stick.as_ref().map_or(0.0, |st| st.pn.to_f64().abs() / norm),
+            pn_c: pn_c / norm,
             norm,
             t_initial: s.t_initial.to_f64(),
             t_final: t_final.to_f64(),

@@ -860,3 +860,121 @@ fn what_space_cannot_answer_is_refused_naming_the_input() {
         }
     ));
 }
+
+/// `POST /v1/impacts/spatial` with `kinetic_restitution`: the two-phase law
+/// with a prescribed approach ratio or Coulomb friction in the approach, in
+/// both precisions, and each refusal at its member.
+#[tokio::test]
+async fn the_spatial_endpoint_takes_the_two_phase_law_and_refuses_at_its_members() {
+    use crate::common::server::spawn_app;
+    use reqwest::StatusCode;
+    use restitution::http::ServiceConfig;
+    use serde_json::{Value, json};
+    let app = spawn_app(ServiceConfig::default()).await;
+    let tennis = |kinetic: Value| {
+        let mut r = crate::common::examples::example("spatial_tennis_topspin.json");
+        let o = r.as_object_mut().unwrap();
+        o.remove("restitution");
+        o.remove("friction");
+        o.insert("kinetic_restitution".into(), kinetic);
+        r
+    };
+    let problem = |status: StatusCode, headers: &reqwest::header::HeaderMap, body: &Value, pointer: &str| {
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+        assert_eq!(headers["content-type"], "application/problem+json", "{body}");
+        assert_eq!(body["pointer"], pointer, "{body}");
+        assert!(body["detail"].as_str().is_some_and(|d| !d.is_empty()), "{body}");
+    };
+    for precision in ["fast", "exact"] {
+        // A ball on its normal: r ∥ n, so D_R = D_A and the equivalent e is R.
+        let mut r =
+            tennis(json!({"value": 0.75, "approach_impulse_ratio": 0.3, "rebound_impulse_ratio": 0.1}));
+        r["precision"] = json!(precision);
+        let (status, _, o) = app.post("/v1/impacts/spatial", &r).await;
+        assert_eq!(status, StatusCode::OK, "{o}");
+        assert_eq!(o["regime"], "prescribed", "{o}");
+        assert_eq!(o["restitution"], 0.75, "{o}");
+        assert_eq!(o["bodies"][0]["velocity"]["z"], 7.5, "{o}");
+        let mu = o["impulse_ratio"].as_f64().unwrap();
+        assert!((mu - (0.3 + 0.75 * 0.1) / 1.75).abs() < 1e-15, "{o}");
+        // The contact point slips forward (+x) under topspin: P_t points back.
+        assert!(o["impulse"]["tangential"]["x"].as_f64().unwrap() < 0.0, "{o}");
+        // Coulomb in the approach, a frictionless rebound (a time-stepping
+        // engine's contact): the friction is capped by the approach's impulse.
+        let mut r = tennis(json!({"value": 0.75, "approach_friction": 0.2, "rebound_impulse_ratio": 0.0}));
+        r["precision"] = json!(precision);
+        let (status, _, o) = app.post("/v1/impacts/spatial", &r).await;
+        assert_eq!(status, StatusCode::OK, "{o}");
+        assert_eq!(o["regime"], "sliding", "{o}");
+        assert_eq!(o["bodies"][0]["velocity"]["z"], 7.5, "{o}");
+        let mu = o["impulse_ratio"].as_f64().unwrap();
+        assert!((mu - 0.2 / 1.75).abs() < 1e-15, "{o}");
+        let mut r = tennis(json!({"value": 0.75, "approach_friction": 10.0, "rebound_impulse_ratio": 0.0}));
+        r["precision"] = json!(precision);
+        let (status, _, o) = app.post("/v1/impacts/spatial", &r).await;
+        assert_eq!(status, StatusCode::OK, "{o}");
+        assert_eq!(o["regime"], "sticking", "{o}");
+    }
+    let cases = [
+        (
+            json!({"value": 0.5, "approach_impulse_ratio": 0.1, "approach_friction": 0.1, "rebound_impulse_ratio": 0.0}),
+            "/kinetic_restitution/approach_friction",
+        ),
+        (
+            json!({"value": 0.5, "rebound_impulse_ratio": 0.0}),
+            "/kinetic_restitution/approach_impulse_ratio",
+        ),
+        (
+            json!({"value": 0.5, "approach_impulse_ratio": 0.1, "rebound_impulse_ratio": -0.1}),
+            "/kinetic_restitution/rebound_impulse_ratio",
+        ),
+        (
+            json!({"value": 1.5, "approach_impulse_ratio": 0.1, "rebound_impulse_ratio": 0.1}),
+            "/kinetic_restitution/value",
+        ),
+        (
+            json!({"value": 0.5, "approach_friction": -1.0, "rebound_impulse_ratio": 0.1}),
+            "/kinetic_restitution/approach_friction",
+        ),
+    ];
+    for (kinetic, pointer) in cases {
+        let (status, headers, body) = app.post("/v1/impacts/spatial", &tennis(kinetic)).await;
+        problem(status, &headers, &body, pointer);
+    }
+    let law = json!({"value": 0.5, "approach_impulse_ratio": 0.1, "rebound_impulse_ratio": 0.1});
+    let mut r = tennis(law.clone());
+    r["torsion"] = json!({"restitution": 0.3, "friction": 0.2, "pitch_radius": 0.01});
+    let (status, headers, body) = app.post("/v1/impacts/spatial", &r).await;
+    problem(status, &headers, &body, "/torsion");
+    assert_eq!(body["type"], "urn:restitution:problem:law-unavailable", "{body}");
+    let mut r = tennis(law.clone());
+    r["restitution"] = json!(0.5);
+    let (status, headers, body) = app.post("/v1/impacts/spatial", &r).await;
+    problem(status, &headers, &body, "/restitution");
+    // Straight down without spin: no slip and no tangential sticking impulse.
+    let mut r = tennis(law);
+    r["bodies"][0]["velocity"] = json!({"x": 0.0, "y": 0.0, "z": -10.0});
+    r["bodies"][0]["angular_velocity"] = json!({"x": 0.0, "y": 0.0, "z": 0.0});
+    let (status, headers, body) = app.post("/v1/impacts/spatial", &r).await;
+    problem(
+        status,
+        &headers,
+        &body,
+        "/kinetic_restitution/approach_impulse_ratio",
+    );
+    assert_eq!(
+        body["type"], "urn:restitution:problem:no-slip-direction",
+        "{body}"
+    );
+    // The plane has no Coulomb approach phase.
+    let mut planar = crate::common::examples::example("planar_car_to_car.json");
+    let o = planar.as_object_mut().unwrap();
+    o.remove("restitution");
+    o.remove("friction");
+    o.insert(
+        "kinetic_restitution".into(),
+        json!({"value": 0.2, "approach_friction": 0.6, "rebound_impulse_ratio": 0.0}),
+    );
+    let (status, headers, body) = app.post("/v1/impacts/planar", &planar).await;
+    problem(status, &headers, &body, "/kinetic_restitution/approach_friction");
+}

@@ -127,7 +127,18 @@ fn random_f(rng: &mut Rng) -> f64 {
 
 fn random_law(rng: &mut Rng) -> Law {
     let e = random_e(rng);
-    match rng.next_u64() % 4 {
+    let ratio = |rng: &mut Rng| if rng.chance(0.2) { 0.0 } else { rng.range(0.0, 1.0) };
+    match rng.next_u64() % 6 {
+        4 => Law::KineticRestitution {
+            value: e,
+            approach_impulse_ratio: ratio(rng),
+            rebound_impulse_ratio: ratio(rng),
+        },
+        5 => Law::KineticFriction {
+            value: e,
+            approach_friction: random_f(rng),
+            rebound_impulse_ratio: ratio(rng),
+        },
         0 => Law::Frictionless { restitution: e },
         1 => Law::ImpulseRatio {
             restitution: e,
@@ -166,7 +177,17 @@ fn random_twist(rng: &mut Rng, length: f64) -> Option<Twist> {
 
 fn dyadic_law(rng: &mut Rng) -> Law {
     let e = dy(rng, 0, 4, 4.0);
-    match rng.next_u64() % 4 {
+    match rng.next_u64() % 6 {
+        4 => Law::KineticRestitution {
+            value: e,
+            approach_impulse_ratio: dy(rng, 0, 8, 8.0),
+            rebound_impulse_ratio: dy(rng, 0, 8, 8.0),
+        },
+        5 => Law::KineticFriction {
+            value: e,
+            approach_friction: dy(rng, 0, 8, 8.0),
+            rebound_impulse_ratio: dy(rng, 0, 4, 8.0),
+        },
         0 => Law::Frictionless { restitution: e },
         1 => Law::ImpulseRatio {
             restitution: e,
@@ -782,6 +803,14 @@ fn cases(seed: u64, size: usize) -> Vec<Case> {
                     None => continue,
                 },
             };
+            // The two-phase law takes no twist law (refused; tested apart).
+            let mut impact = impact;
+            if matches!(
+                impact.law,
+                Law::KineticRestitution { .. } | Law::KineticFriction { .. }
+            ) {
+                impact.torsion = None;
+            }
             out.push(Case {
                 set,
                 impact,
@@ -922,6 +951,7 @@ fn exact_mode_is_correctly_rounded_against_the_rational_reference() {
     let (mut rooted, mut straddled, mut undecided, mut on_cap, mut outputs) = (0, 0, 0, 0, 0usize);
     let (mut on_cap_kept, mut zero_slip_sliding, mut zero_spin_sliding) = (0, 0, 0);
     let mut twist_cap_kept = 0;
+    let mut laws: BTreeMap<&str, usize> = BTreeMap::new();
     let mut failures = Vec::new();
     for Solved { case, verdict } in solved() {
         let (got, _stage) = solve_in(&case.impact, Outputs::ALL, Arithmetic::Exact);
@@ -954,6 +984,7 @@ fn exact_mode_is_correctly_rounded_against_the_rational_reference() {
                 zero_spin_sliding += usize::from(case.set == Set::ZeroSpin && a.torsional == Some("sliding"));
                 let key = format!("{}/{}", a.regime, a.torsional.unwrap_or("-"));
                 *regimes.entry(key).or_insert(0) += 1;
+                *laws.entry(case.impact.law.describe()).or_insert(0) += 1;
             }
             (Reference::Refused(r), Err(e)) if r.slug() == e.slug() => {
                 *refusals.entry(r.slug()).or_insert(0) += 1;
@@ -981,7 +1012,7 @@ fn exact_mode_is_correctly_rounded_against_the_rational_reference() {
          {on_cap} with f exactly on the cap ({on_cap_kept} kept there), {twist_cap_kept} twist restitution answers with μ_z \
          exactly on its cap, {zero_slip_sliding} sliding \
          from zero slip, {zero_spin_sliding} twist sliding from zero spin), refused {refusals:?}, {undecided} undecided by \
-         the reference; regimes {regimes:?}",
+         the reference; regimes {regimes:?}; answers by law {laws:?}",
         solved().len()
     );
     assert!(
@@ -997,6 +1028,12 @@ fn exact_mode_is_correctly_rounded_against_the_rational_reference() {
         "no twist restitution answer exactly on its cap"
     );
     assert!(zero_slip_sliding > 0, "no sliding answer from zero slip");
+    for law in [
+        "two-phase kinetic restitution",
+        "two-phase kinetic restitution with a Coulomb approach",
+    ] {
+        assert!(laws.get(law).is_some_and(|&n| n > 50 * SIZE), "{law}: {laws:?}");
+    }
     assert!(zero_spin_sliding > 0, "no twist sliding answer from zero spin");
     assert!(straddled * 1000 < outputs, "{straddled} straddles of {outputs}");
     for r in [

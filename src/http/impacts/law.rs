@@ -1,5 +1,6 @@
 //! The wire form of a contact law, one for every endpoint and sweep: the
-//! members `restitution`, `kinetic_restitution`, `friction`,
+//! members `restitution`, `kinetic_restitution` (with `approach_impulse_ratio`
+//! or `approach_friction`), `friction`,
 //! `impulse_ratio` and `tangential_restitution`, read into a [`Law`] by one
 //! parser with one set of messages (`law_of`).
 
@@ -10,16 +11,24 @@ use utoipa::ToSchema;
 use crate::http::problem::ApiError;
 use crate::impact::Law;
 
-/// The Appendix's two-phase model: kinetic restitution R with phase impulse ratios.
+/// The Appendix's two-phase model: kinetic restitution R with phase impulse
+/// ratios (in space magnitudes, ≥ 0, along one direction opposing the slip),
+/// or, in space, Coulomb friction in the approach phase instead of its ratio.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct KineticRestitutionDto {
     /// R = P_n^R / P_n^A: kinetic coefficient of restitution (Eq 9), in [0, 1].
     #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
     pub value: f64,
-    /// μ_A = P_t^A / P_n^A: impulse ratio of the approach phase (Eq 12).
+    /// μ_A = P_t^A / P_n^A: impulse ratio of the approach phase (Eq 12);
+    /// give it or `approach_friction`.
     #[schema(example = -0.123)]
-    pub approach_impulse_ratio: f64,
+    pub approach_impulse_ratio: Option<f64>,
+    /// f_A ≥ 0 (in space only): Coulomb friction within the approach phase,
+    /// which sticks when the impulse ending it with no relative contact
+    /// velocity has |P_t| ≤ f_A P_n, and otherwise slides against the slip.
+    #[schema(minimum = 0.0, example = 0.3)]
+    pub approach_friction: Option<f64>,
     /// μ_R = P_t^R / P_n^R: impulse ratio of the rebound phase (Eq 13).
     #[schema(example = -0.123)]
     pub rebound_impulse_ratio: f64,
@@ -85,11 +94,26 @@ pub(super) fn law_of(
                 "kinetic_restitution carries its own impulse ratios: give no other tangential law",
             ));
         }
-        return Ok(Law::KineticRestitution {
-            value: k.value,
-            approach_impulse_ratio: k.approach_impulse_ratio,
-            rebound_impulse_ratio: k.rebound_impulse_ratio,
-        });
+        return match (k.approach_impulse_ratio, k.approach_friction) {
+            (Some(approach_impulse_ratio), None) => Ok(Law::KineticRestitution {
+                value: k.value,
+                approach_impulse_ratio,
+                rebound_impulse_ratio: k.rebound_impulse_ratio,
+            }),
+            (None, Some(approach_friction)) => Ok(Law::KineticFriction {
+                value: k.value,
+                approach_friction,
+                rebound_impulse_ratio: k.rebound_impulse_ratio,
+            }),
+            (Some(_), Some(_)) => Err(law_problem(
+                "/kinetic_restitution/approach_friction",
+                "give approach_impulse_ratio or approach_friction, not both",
+            )),
+            (None, None) => Err(law_problem(
+                "/kinetic_restitution/approach_impulse_ratio",
+                "the approach phase needs approach_impulse_ratio (or, in space, approach_friction)",
+            )),
+        };
     }
     let Some(restitution) = restitution else {
         return Err(law_problem(

@@ -13,6 +13,11 @@
 //!
 //! One fixed direction keeps one root per answer (the sliding law's `ρ`),
 //! and in a planar scene it is the planar law with `μ_R` of `μ_A`'s sign.
+//! With Coulomb friction `f_A` in the approach, the approach sticks when
+//! `W P = −u` has `|P_t| ≤ f_A P_n` (`P^A` that impulse, `w` its `P_t`), else
+//! slides as the ratio `μ_A = f_A`; the regime names the approach's branch.
+//! (A rebound that opposed the slip left by the approach would need the
+//! root of a number holding `ρ`: no longer one root per answer.)
 
 use super::*;
 
@@ -24,27 +29,34 @@ pub(super) fn kinetic<N: Radical>(
     outputs: Outputs,
     outcome: &mut SpatialOutcome,
 ) -> Exact<N, ()> {
-    let Approach::Ratio(mu_a) = phases.approach;
     let (r, mu_r) = (phases.r, phases.rebound);
     let rebound = r > 0.0;
     let refuse = |error: ImpactError| -> Exact<N, ()> { Err(Fail::Refused(error)) };
     let zero = N::of(0.0);
-    // The direction: against the slip, or the approach's sticking impulse
-    // (W P = −u, ending with U = 0) where there is no slip.
+    // The approach's sticking impulse (W P = −u: it ends with U = 0).
+    let stick = map(&sym_mul(&sc.adj, &sc.u), |x| x.div(&sc.det).neg());
+    let stick = sc.solution(stick, zero.clone());
+    let (pointer, mu_a, kept) = match phases.approach {
+        Approach::Ratio(mu) => (Input::ApproachImpulseRatio, mu, false),
+        Approach::Friction(f) => (
+            Input::ApproachFriction,
+            f,
+            sc.tangential_holds(&Some(stick.clone()))?,
+        ),
+    };
+    // The direction: the sticking impulse's P_t if the approach sticks;
+    // else against the slip, or that P_t where there is no slip.
     let slip = norm2(&sc.ut);
-    let w = if sign(&slip)? == Ordering::Greater {
+    let w = if !kept && sign(&slip)? == Ordering::Greater {
         Some((map(&sc.ut, |x| x.neg()), slip))
     } else {
-        let stick = map(&sym_mul(&sc.adj, &sc.u), |x| x.div(&sc.det).neg());
-        let stick = sc.solution(stick, zero.clone());
         let size = norm2(&stick.pt);
-        (sign(&size)? == Ordering::Greater).then_some((stick.pt, size))
+        (sign(&size)? == Ordering::Greater).then(|| (stick.pt.clone(), size))
     };
+    let prescribed = pointer == Input::ApproachImpulseRatio;
     if w.is_none() {
-        if mu_a > 0.0 {
-            return refuse(ImpactError::NoSlipDirection {
-                input: Input::ApproachImpulseRatio,
-            });
+        if prescribed && mu_a > 0.0 {
+            return refuse(ImpactError::NoSlipDirection { input: pointer });
         }
         if rebound && mu_r > 0.0 {
             return refuse(ImpactError::NoSlipDirection {
@@ -53,8 +65,9 @@ pub(super) fn kinetic<N: Radical>(
         }
     }
     // ρ w, the tangential direction scaled to |n|, where a phase uses it.
+    let sliding = !kept && mu_a > 0.0;
     let along = match &w {
-        Some((w, size)) if mu_a > 0.0 || (rebound && mu_r > 0.0) => {
+        Some((w, size)) if sliding || (rebound && mu_r > 0.0) => {
             let rho = sc.nu.div(size).sqrt().map_err(Fail::Undecided)?;
             Some(map(w, |x| rho.mul(x)))
         }
@@ -67,32 +80,45 @@ pub(super) fn kinetic<N: Radical>(
         Some(a) if mu > 0.0 => N::of(mu).mul_add(&dot(&wn, a), &nwn),
         _ => nwn.clone(),
     };
-    let d_a = coefficient(mu_a);
-    if sign(&d_a)? != Ordering::Greater {
-        return refuse(ImpactError::NoImpulse {
-            input: Input::ApproachImpulseRatio,
-        });
-    }
+    // The approach P^A = α n + (its tangential part), with α = P^A·n/ν.
+    let (alpha, approach_t) = if kept {
+        if sign(&stick.pn)? != Ordering::Greater {
+            return refuse(ImpactError::NoImpulse { input: pointer });
+        }
+        (stick.pn.div(&sc.nu), stick.pt.clone())
+    } else {
+        let d_a = coefficient(mu_a);
+        if sign(&d_a)? != Ordering::Greater {
+            return refuse(ImpactError::NoImpulse { input: pointer });
+        }
+        let alpha = sc.un.neg().div(&d_a);
+        let tangential = match &along {
+            Some(a) if sliding => map(a, |x| N::of(mu_a).mul(&alpha).mul(x)),
+            _ => [zero.clone(), zero.clone(), zero.clone()],
+        };
+        (alpha, tangential)
+    };
     let d_r = coefficient(mu_r);
     if rebound && sign(&d_r)? != Ordering::Greater {
         return refuse(ImpactError::NoImpulse {
             input: Input::ReboundImpulseRatio,
         });
     }
-    let alpha = sc.un.neg().div(&d_a);
+    // The rebound R α (n + μ_R ρ w); e = −U_n/u_n = R α D_R / (−u·n).
     let beta = N::of(r).mul(&alpha);
     let e = if rebound {
-        N::of(r).mul(&d_r.div(&d_a))
+        beta.mul(&d_r).div(&sc.un.neg())
     } else {
         zero.clone()
     };
-    // P = (α + β) n + λ ρ w, λ = μ_A α + μ_R β.
-    let lambda = N::of(mu_a).mul_add(&alpha, &N::of(mu_r).mul(&beta));
-    let normal = alpha.add(&beta);
     let pt = match &along {
-        Some(a) => map(a, |x| lambda.mul(x)),
-        None => [zero.clone(), zero.clone(), zero.clone()],
+        Some(a) if rebound && mu_r > 0.0 => {
+            let k = N::of(mu_r).mul(&beta);
+            zip(&approach_t, a, |x, y| k.mul_add(y, x))
+        }
+        _ => approach_t,
     };
+    let normal = alpha.add(&beta);
     let s = Solution {
         p: axpy(&normal, &sc.n, &pt),
         pn: normal.mul(&sc.nu),
@@ -108,11 +134,15 @@ pub(super) fn kinetic<N: Radical>(
             energy_loss: -0.5 * work.approx(),
         });
     }
-    // |P_t| / P_n = (μ_A + R μ_R) / (1 + R) along the one direction.
-    let impulse_ratio = if along.is_some() {
+    // |P_t| / P_n: (μ_A + R μ_R) / (1 + R) along the one direction; of the
+    // impulse itself after a sticking approach.
+    let impulse_ratio = if kept {
+        sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0)
+    } else if along.is_some() {
         let one = N::of(1.0);
+        let mu_a = if sliding { mu_a } else { 0.0 };
         let ratio = N::of(r)
-            .mul_add(&N::of(mu_r), &N::of(mu_a))
+            .mul_add(&N::of(if rebound { mu_r } else { 0.0 }), &N::of(mu_a))
             .div(&one.add(&N::of(r)));
         out(Output::ImpulseRatio, &ratio)?
     } else {
@@ -136,7 +166,11 @@ pub(super) fn kinetic<N: Radical>(
         work,
         impulse_ratio,
         critical_impulse_ratio,
-        regime: Regime::Prescribed,
+        regime: match phases.approach {
+            Approach::Ratio(_) => Regime::Prescribed,
+            Approach::Friction(_) if kept => Regime::Sticking,
+            Approach::Friction(_) => Regime::Sliding,
+        },
         torsional_regime: None,
     };
     write(sc, answer, outputs, outcome)

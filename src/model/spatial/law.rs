@@ -57,6 +57,9 @@ pub(super) struct Reading {
 pub(super) enum Approach {
     /// `|P_t^A| = μ_A P_n^A` opposing the slip.
     Ratio(f64),
+    /// Coulomb friction `f_A` within the phase: stick (`U = 0` at its end)
+    /// when that impulse has `|P_t| ≤ f_A P_n`, else slide against the slip.
+    Friction(f64),
 }
 
 /// The Appendix's two phases in space (conventions, rule 7).
@@ -134,6 +137,19 @@ impl Reading {
                     Regime::Prescribed,
                     Input::KineticRestitution,
                 )
+            },
+            Law::KineticFriction {
+                value,
+                approach_friction,
+                rebound_impulse_ratio,
+            } => Reading {
+                phases: Some(Phases {
+                    r: value,
+                    approach: Approach::Friction(approach_friction),
+                    rebound: rebound_impulse_ratio,
+                }),
+                cap: approach_friction,
+                ..single(value, approach_friction, Regime::Sliding, Input::ApproachFriction)
             },
             Law::Frictionless { restitution } => {
                 let pointer = if twist { Input::Torsion } else { Input::Restitution };
