@@ -46,6 +46,32 @@ struct Body<N> {
     rho: [N; 2],
 }
 
+impl<N: Field> Body<N> {
+    /// Lamina `l`'s body terms for contact point `c`, normal `n` and tangent
+    /// `t`, with its contact-point velocity's normal and tangential parts
+    /// (a function, not a closure: inlined into the compiled copy that runs).
+    #[inline(always)]
+    fn of(l: &Lamina, c: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
+        let (r, u) = contact_point_velocity(l, c);
+        let m = N::of(l.mass);
+        let inertia = N::of(l.inertia);
+        let one = N::of(1.0);
+        let body = Body {
+            inv_m: one.div(&m),
+            inv_i: one.div(&inertia),
+            rho: [
+                r[0].mul_add(&n[1], &r[1].mul(&n[0]).neg()),
+                r[0].mul_add(&n[0], &r[1].mul(&n[1])),
+            ],
+            m,
+            inertia,
+            v: [N::of(l.velocity[0]), N::of(l.velocity[1])],
+            w: N::of(l.angular_velocity),
+        };
+        (body, along(&u, n), along(&u, t))
+    }
+}
+
 /// The relative normal contact velocity `ũ_n = (u_A − u_B) · n`, with
 /// `u_b = v_b + ω_b ẑ × r_b`: the same operations in every field, so the f64
 /// value the fast evaluation decides on is the one validation checked.
@@ -102,35 +128,18 @@ struct Scene<N> {
 }
 
 impl<N: Field> Scene<N> {
+    #[inline(always)]
     fn new(fast: &BodiesImpact) -> Self {
         let n = [N::of(fast.contact.normal[0]), N::of(fast.contact.normal[1])];
         let c = [N::of(fast.contact.point[0]), N::of(fast.contact.point[1])];
         let nn = n[0].mul_add(&n[0], &n[1].mul(&n[1]));
         let t = [n[1].neg(), n[0].clone()];
         let one = N::of(1.0);
-        let body = |l: &Lamina| {
-            let (r, u) = contact_point_velocity(l, &c);
-            let m = N::of(l.mass);
-            let inertia = N::of(l.inertia);
-            let body = Body {
-                inv_m: one.div(&m),
-                inv_i: one.div(&inertia),
-                rho: [
-                    r[0].mul_add(&n[1], &r[1].mul(&n[0]).neg()),
-                    r[0].mul_add(&n[0], &r[1].mul(&n[1])),
-                ],
-                m,
-                inertia,
-                v: [N::of(l.velocity[0]), N::of(l.velocity[1])],
-                w: N::of(l.angular_velocity),
-            };
-            (body, along(&u, &n), along(&u, &t))
-        };
         // ũ_n by the operations of `approach`, which validation decided on.
-        let (a, mut un, mut ut) = body(&fast.a);
+        let (a, mut un, mut ut) = Body::of(&fast.a, &c, &n, &t);
         let (bodies, count) = match &fast.b {
             Some(l) => {
-                let (b, bun, but) = body(l);
+                let (b, bun, but) = Body::of(l, &c, &n, &t);
                 un = un.sub(&bun);
                 ut = ut.sub(&but);
                 ([a, b], 2)
@@ -186,6 +195,7 @@ impl<N: Field> Scene<N> {
     /// The energies of the pair: `T = Σ ½ m v² + ½ I ω²`, the loss `−½ q·(ũ + Ũ)`
     /// (the work of the impulse), and `T_M = ½ ũᵀ W̃⁻¹ ũ` formed from
     /// `adj W̃ = α 1 + Σ ρ⊥ρ⊥ᵀ/I_b` as `½ [α |ũ|² + Σ (ρ_t ũ_n − ρ_n ũ_t)²/I_b] / det`.
+    #[inline(always)]
     fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
@@ -282,6 +292,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     #[inline(always)]
     fn add_turns(_a: &(), _b: &()) {}
 
+    #[inline(always)]
     fn assemble(&self, x: &Assembly<'_, N, ()>, outcome: &mut BodiesOutcome) -> Exact<N, ()> {
         let a = x.answer;
         let (qn, qt) = (&a.dn, &a.dt);

@@ -54,6 +54,7 @@ pub(super) fn sym_mul<N: Field>(m: &Sym<N>, x: &V3<N>) -> V3<N> {
 }
 
 /// The adjugate and the determinant of a symmetric matrix.
+#[inline(always)]
 pub(super) fn adjugate<N: Field>(m: &Sym<N>) -> (Sym<N>, N) {
     let [a, b, c, d, e, f] = m;
     let adj = [

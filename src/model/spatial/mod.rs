@@ -56,6 +56,7 @@ use super::vector::*;
 /// The leading principal minors `I_xx`, `I_xx I_yy − I_xy²` and `det I` of a
 /// tensor `[xx, yy, zz, xy, xz, yz]`: it is positive definite when all three
 /// are positive (Sylvester's criterion).
+#[inline(always)]
 pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
     let m = tensor.map(N::of);
     let second = m[0].mul_add(&m[1], &m[3].mul(&m[3]).neg());
@@ -65,6 +66,7 @@ pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
 
 /// The relative normal contact velocity `u·n` (unnormalised), by the same
 /// operations as the scene: what validation decides the approach on.
+#[inline(always)]
 pub(crate) fn approach<N: Field>(impact: &SpatialImpact) -> N {
     let c: V3<N> = vector(impact.contact.point);
     let n = vector(impact.contact.normal);

@@ -17,6 +17,7 @@ pub(super) struct Body<N> {
 }
 
 impl<N: Field> Body<N> {
+    #[inline(always)]
     pub(super) fn new(body: &RigidBody, c: &V3<N>) -> Self {
         let m = N::of(body.mass);
         let tensor = body.inertia.map(N::of);
@@ -35,6 +36,7 @@ impl<N: Field> Body<N> {
     }
 
     /// The contact-point velocity `v + ω × r`.
+    #[inline(always)]
     pub(super) fn contact_velocity(&self) -> V3<N> {
         point_velocity(&self.v, &self.w, &self.r)
     }
@@ -65,6 +67,7 @@ pub(super) struct Scene<'a, N> {
 }
 
 impl<'a, N: Radical> Scene<'a, N> {
+    #[inline(always)]
     pub(super) fn new(impact: &'a SpatialImpact) -> Self {
         let c: V3<N> = vector(impact.contact.point);
         let n = vector(impact.contact.normal);
@@ -135,6 +138,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `(P, κ)` with its `P·n` and `P_t`.
+    #[inline(always)]
     pub(super) fn solution(&self, p: V3<N>, kappa: N) -> Solution<N> {
         let pn = dot(&p, &self.n);
         let pt = axpy(&pn.div(&self.nu).neg(), &self.n, &p);
@@ -150,12 +154,19 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The solution of branches `(t, z)` (`None`: its system is singular),
     /// the kept branch targeting `U_t = −e_t u_t`.
+    #[inline(always)]
     pub(super) fn solve(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
         let slot = Self::slot(t, z, et);
         if let Some(found) = &self.cache[slot] {
             return Ok(found.clone());
         }
-        let found = self.compute(t, z, et)?;
+        // `compute` reaches `solve` again (a branch may need another's
+        // solution): the cycle's one out-of-line function is `run`'s, so it
+        // is compiled into the copy that runs (its `fma`s one instruction).
+        let found = crate::kernels::run(
+            #[inline(always)]
+            || self.compute(t, z, et),
+        )?;
         self.cache[slot] = Some(found.clone());
         Ok(found)
     }
@@ -163,6 +174,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `κ = c₀ + c₁ (P·n)` of the sliding twist: `c₀ = −e_z s̃/k`,
     /// `c₁ = τ μ_z ρ_p/ν`, `τ = −sgn s̃` or, without spin, the sign of the
     /// restitution branch's couple with the same tangential branch.
+    #[inline(always)]
     pub(super) fn twist_terms(&mut self, t: Tangential, et: f64) -> Exact<N, (N, N)> {
         let Some(twist) = self.twist else {
             return Ok((N::of(0.0), N::of(0.0)));
@@ -186,6 +198,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         Ok((c0, c1))
     }
 
+    #[inline(always)]
     pub(super) fn compute(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
         let ds = match self.twist {
             Some(tw) => N::of(1.0).add(&N::of(tw.restitution)).mul(&self.s).neg(),
@@ -277,6 +290,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The sliding impulse's direction `n + c √(ν/|w_s|²) w_s`, and whether
     /// it is `n` itself; `None` when the sticking system it needs is singular.
+    #[inline(always)]
     pub(super) fn direction(&mut self, z: Spin) -> Exact<N, Option<(V3<N>, bool)>> {
         if self.law.c == 0.0 {
             return Ok(Some((self.n.clone(), true)));
@@ -305,6 +319,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// Whether the kept tangential branch holds: `P·n ≠ 0`, `ν |P_t|² ≤ f² (P·n)²`.
+    #[inline(always)]
     pub(super) fn tangential_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
         let Some(s) = s else { return Ok(false) };
         if sign(&s.pn)? == Ordering::Equal {
@@ -318,6 +333,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// Whether the twist's restitution branch holds: `P·n ≠ 0`,
     /// `(κ + e_z s̃/k)² ≤ (μ_z ρ_p P·n/ν)²`.
+    #[inline(always)]
     pub(super) fn spin_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
         let (Some(s), Some(twist)) = (s, self.twist) else {
             return Ok(false);
@@ -334,6 +350,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// The one valid combination of branches, with its solution.
+    #[inline(always)]
     pub(super) fn choose(&mut self) -> Exact<N, (Tangential, Spin, Option<Solution<N>>)> {
         let et = self.law.kept.unwrap_or(0.0);
         let tangentials: &[Tangential] = if self.law.kept.is_some() {
@@ -393,6 +410,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
     /// (`None` when `P·n = 0`).
+    #[inline(always)]
     pub(super) fn ratio(&self, s: &Solution<N>, output: Output) -> Exact<N, Option<f64>> {
         if sign(&s.pn)? == Ordering::Equal {
             return Ok(None);
@@ -406,10 +424,12 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `x/|n|` correctly rounded.
+    #[inline(always)]
     pub(super) fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
         out_times_sqrt(output, &x.div(&self.nu), &self.nu)
     }
 
+    #[inline(always)]
     pub(super) fn vector_out(outputs: [Output; 3], x: &V3<N>) -> Exact<N, [f64; 3]> {
         Ok([
             out(outputs[0], &x[0])?,
@@ -437,6 +457,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
     /// adjugate and the Schur complement of `W`.
+    #[inline(always)]
     pub(super) fn max_loss(&self) -> N {
         let a = sym_mul(&self.adj, &self.u);
         let mut twice = dot(&self.u, &a).div(&self.det);
@@ -449,6 +470,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         half::<N>().mul(&twice)
     }
 
+    #[inline(always)]
     pub(super) fn initial_energy(&self) -> N {
         let mut total = N::of(0.0);
         for b in &self.bodies {
