@@ -1,18 +1,21 @@
 //! Coefficient identification from measured impacts, one module per model:
 //! [`tangential`](mod@tangential) (`e`, `f`, `e_t` of the bilinear tangential model, section 3),
 //! [`torsional`](mod@torsional) (`e`, `e_z`, `μ_z` of the torsional model, section 4)
-//! and [`planar`](mod@planar) (`e`, `μ` and the normal of a two-body contact from the
-//! measured velocity changes, as reconstruction needs).
+//! [`planar`](mod@planar) (`e`, `μ` and the normal of a two-body contact from the
+//! measured velocity changes, as reconstruction needs) and [`spatial`](mod@spatial)
+//! (any spatial law's coefficients from many measured impacts in space).
 //! Fitted values are judged by the solver's own model: residuals and regimes
 //! are what [`crate::impact`] answers for the fitted coefficients.
 
 pub mod planar;
+pub mod spatial;
 pub mod tangential;
 pub mod torsional;
 
 use thiserror::Error;
 
 pub use planar::{Measured, MeasuredChange, PlanarFit, planar};
+pub use spatial::{ImpactFit, SpatialChange, SpatialFit, SpatialLaw, SpatialObservation, spatial};
 pub use tangential::{Observation, TangentialFit, impulse_ratio_from_intercept, tangential};
 pub use torsional::{TorsionalFit, TorsionalObservation, torsional};
 

@@ -22,6 +22,7 @@ mod reference;
 mod robustness;
 mod shutdown;
 mod spatial;
+mod spatial_fits;
 mod spatial_reference;
 mod sweep_rows;
 mod sweeps;

@@ -60,7 +60,7 @@ pub struct SpatialBodyDto {
 }
 
 impl SpatialBodyDto {
-    fn body(&self, k: usize) -> Result<RigidBody, ApiError> {
+    pub(crate) fn body(&self, k: usize) -> Result<RigidBody, ApiError> {
         Ok(RigidBody {
             mass: self.mass,
             inertia: self.inertia.tensor(k, self.mass)?,
