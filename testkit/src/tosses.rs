@@ -997,17 +997,26 @@ pub enum Model {
     /// Coulomb friction with the twist law about the normal, `e`, `f`,
     /// `e_z`, `μ_z` fitted ([`PITCH_RADIUS`]).
     Twist,
+    /// The two-phase kinetic law, `R`, `μ_A`, `μ_R` fitted by
+    /// `restitution::fit::spatial` ([`fit_two_phase`]).
+    TwoPhase,
+    /// The two-phase law with Coulomb friction in the approach (with
+    /// `μ_R = 0` a time-stepping engine's contact), `R`, `f_A`, `μ_R` fitted
+    /// by `restitution::fit::spatial`.
+    CoulombApproach,
 }
 
 impl Model {
     /// All of them, in the table's order.
-    pub const ALL: [Model; 6] = [
+    pub const ALL: [Model; 8] = [
         Model::NoImpact,
         Model::Frictionless,
         Model::Authors,
         Model::Coulomb,
         Model::Bilinear,
         Model::Twist,
+        Model::TwoPhase,
+        Model::CoulombApproach,
     ];
 
     pub fn name(self) -> &'static str {
@@ -1018,6 +1027,8 @@ impl Model {
             Model::Coulomb => "Coulomb, e f fitted",
             Model::Bilinear => "bilinear, e f e_t fitted",
             Model::Twist => "Coulomb + twist, e f e_z mu_z fitted",
+            Model::TwoPhase => "two-phase, R mu_A mu_R fitted (LM)",
+            Model::CoulombApproach => "two-phase Coulomb approach, R f_A mu_R fitted (LM)",
         }
     }
 
@@ -1029,6 +1040,8 @@ impl Model {
             Model::Coulomb => &["e", "f"],
             Model::Bilinear => &["e", "f", "e_t"],
             Model::Twist => &["e", "f", "e_z", "mu_z"],
+            Model::TwoPhase => &["R", "mu_A", "mu_R"],
+            Model::CoulombApproach => &["R", "f_A", "mu_R"],
         }
     }
 
@@ -1039,7 +1052,7 @@ impl Model {
         self.parameters()
             .iter()
             .map(|&p| match p {
-                "e" | "e_z" => (0.0, 1.0),
+                "e" | "e_z" | "R" => (0.0, 1.0),
                 "f" => (0.0, 3.0),
                 "e_t" => (-1.0, 1.0),
                 _ => (0.0, 10.0),
@@ -1064,6 +1077,22 @@ impl Model {
                     restitution: p[0],
                     friction: p[1],
                     tangential_restitution: p[2],
+                },
+                None,
+            )),
+            Model::TwoPhase => Some((
+                Law::KineticRestitution {
+                    value: p[0],
+                    approach_impulse_ratio: p[1],
+                    rebound_impulse_ratio: p[2],
+                },
+                None,
+            )),
+            Model::CoulombApproach => Some((
+                Law::KineticFriction {
+                    value: p[0],
+                    approach_friction: p[1],
+                    rebound_impulse_ratio: p[2],
                 },
                 None,
             )),
@@ -1378,9 +1407,61 @@ pub fn fit_model(
             });
             minimise(&mut objective, &bounds, 3, Some(&start), 200)
         }
+        Model::TwoPhase | Model::CoulombApproach => match fit_two_phase(train, inertia, model) {
+            Ok(p) => (p, 0.0),
+            Err(why) => panic!("{}: {why}", model.name()),
+        },
     };
     let s = score(train, inertia, model, &p);
     (p, s)
+}
+
+/// The standard uncertainties [`fit_two_phase`] weights the measured
+/// changes with: 1 m/s for `ΔV`, and for `Δω` the same at the corner's lever
+/// `√3 h`, so that both weigh as velocities of G and of the contact point.
+pub const SIGMA_V: f64 = 1.0;
+/// See [`SIGMA_V`].
+pub const SIGMA_W: f64 = SIGMA_V / (1.732_050_807_568_877_2 * HALF_WIDTH);
+
+/// Fits a two-phase `model` to `train` at `inertia` with
+/// `restitution::fit::spatial` (weighted least squares of the measured `ΔV`
+/// and `Δω`, [`SIGMA_V`], [`SIGMA_W`], Levenberg–Marquardt): the
+/// coefficients, or the fit's refusal.
+pub fn fit_two_phase(train: &[&Bounce], inertia: f64, model: Model) -> Result<Vec<f64>, String> {
+    use restitution::fit::{Measured, SpatialChange, SpatialLaw, SpatialObservation};
+    let law = match model {
+        Model::TwoPhase => SpatialLaw::KineticRestitution,
+        Model::CoulombApproach => SpatialLaw::KineticFriction,
+        _ => return Err(format!("{} is not a two-phase law", model.name())),
+    };
+    let measured = |a: [f64; 3], b: [f64; 3], sigma: f64| {
+        [0, 1, 2].map(|i| Measured {
+            value: b[i] - a[i],
+            uncertainty: sigma,
+        })
+    };
+    let observations: Vec<SpatialObservation> = train
+        .iter()
+        .map(|b| {
+            let impact = spatial_impact(
+                b,
+                inertia,
+                restitution::Law::Frictionless { restitution: 0.0 },
+                None,
+            );
+            SpatialObservation {
+                a: impact.a,
+                b: None,
+                contact: impact.contact,
+                measured: vec![SpatialChange {
+                    velocity_change: measured(b.pre.velocity, b.post.velocity, SIGMA_V),
+                    angular_velocity_change: Some(measured(b.pre.omega, b.post.omega, SIGMA_W)),
+                }],
+            }
+        })
+        .collect();
+    let fit = restitution::fit::spatial(&observations, law, None).map_err(|e| e.to_string())?;
+    Ok(fit.estimates.iter().map(|(_, e)| e.value).collect())
 }
 
 /// Two folds of the tosses, each physical toss in one: the distinct toss

@@ -464,6 +464,41 @@ fn fitted_coulomb_predicts_held_out_tosses_better_than_no_impact_and_the_authors
     assert!(coulomb.edge.relative()[3] > coulomb.corner.relative()[3]);
 }
 
+/// The two-phase laws fitted through `restitution::fit::spatial`
+/// (Levenberg–Marquardt, weighted least squares of the measured `ΔV` and
+/// `Δω`): the held-out prediction of the same folds, beside fitted Coulomb.
+/// Both predict held-out tosses far better than no impact and no impact is
+/// refused; the measured numbers are in `docs/tosses.md`.
+#[test]
+fn two_phase_laws_fitted_through_the_spatial_fit_predict_held_out_tosses() {
+    let d = data();
+    let results = tosses::held_out(
+        &d.distinct,
+        &[Model::Coulomb, Model::TwoPhase, Model::CoulombApproach],
+        34,
+    );
+    let gc = |h: &tosses::HeldOut| h.corner.relative()[3];
+    for h in &results {
+        println!(
+            "{}: {:?}, corner G+contact {:.4} m/s {:?}, edge {:?}",
+            h.model.name(),
+            h.coefficients,
+            h.corner.rms_gc(),
+            h.corner.relative(),
+            h.edge.relative()
+        );
+        assert_eq!(h.corner.n, corner_impacts(d).len());
+        assert_eq!(h.corner.refused + h.edge.refused + h.face.refused, 0);
+        assert!(gc(h) < 0.3, "{}: {}", h.model.name(), gc(h));
+        for p in &h.coefficients {
+            let (low, high) = (h.model.bounds(), p);
+            for (x, (lo, hi)) in high.iter().zip(low) {
+                assert!((lo..=hi).contains(x), "{}: {p:?}", h.model.name());
+            }
+        }
+    }
+}
+
 /// A bounce as a spatial impact is the measured one: the solver's initial
 /// contact velocity is the bounce's (approaching along +z, the board below),
 /// and the contact-point velocity the scores use is the solver's final one;
