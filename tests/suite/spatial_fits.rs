@@ -229,6 +229,15 @@ async fn every_spatial_law_is_recovered_from_the_impacts_it_made() {
         }
     }
     eprintln!("spatial fits: largest coefficient error {worst:e}");
+    // The OpenAPI document's example request: a ball that slides and one that sticks.
+    let doc: Value = serde_json::from_str(&restitution::http::openapi_json()).unwrap();
+    let example = &doc["components"]["schemas"]["SpatialFitRequest"]["example"];
+    let (status, _, fit) = app.post("/v1/fits/spatial", example).await;
+    assert_eq!(status, StatusCode::OK, "{fit}");
+    assert!((coefficient(&fit, "/restitution") - 0.75).abs() < 1e-9, "{fit}");
+    assert!((coefficient(&fit, "/friction") - 0.15).abs() < 1e-9, "{fit}");
+    assert_eq!(fit["impacts"][0]["regime"], "sliding", "{fit}");
+    assert_eq!(fit["impacts"][1]["regime"], "sticking", "{fit}");
 }
 
 #[tokio::test]
