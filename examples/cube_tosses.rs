@@ -321,8 +321,9 @@ fn prediction(distinct: &[Bounce]) {
         "Distinct tosses with a bounce split in two folds by toss (seed {SEED}): {} and {} tosses; \
          single-corner impacts {} and {}, edge {} and {}, face {} and {}. Each fold's I0 and coefficients \
          are fitted on the other fold's single-corner impacts (least squares of the post-impact \
-         velocities of G and of the contact point); every bounce is predicted once, and the table \
-         pools both held-out folds. Twist pitch radius {} mm.\n",
+         velocities of G and of the contact point; the rows marked LM by restitution::fit::spatial, \
+         weighted least squares of the measured changes of velocity and angular velocity); every \
+         bounce is predicted once, and the table pools both held-out folds. Twist pitch radius {} mm.\n",
         folds.values().filter(|&&k| k == 0).count(),
         folds.values().filter(|&&k| k == 1).count(),
         in_fold(0, Class::Corner),
