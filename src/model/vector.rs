@@ -34,14 +34,79 @@ pub(super) fn zip<N: Field>(a: &V3<N>, b: &V3<N>, f: impl Fn(&N, &N) -> N) -> V3
     [f(&a[0], &b[0]), f(&a[1], &b[1]), f(&a[2], &b[2])]
 }
 
+// The common maps below are written out rather than through `map` and
+// `zip`: a closure called three times is a function of its own to the
+// compiler, which it may leave out of line, and then out of the compiled
+// copy that runs (`crate::kernels`).
+
 /// `k a + b`.
 #[inline(always)]
 pub(super) fn axpy<N: Field>(k: &N, a: &V3<N>, b: &V3<N>) -> V3<N> {
-    zip(a, b, |x, y| k.mul_add(x, y))
+    [
+        k.mul_add(&a[0], &b[0]),
+        k.mul_add(&a[1], &b[1]),
+        k.mul_add(&a[2], &b[2]),
+    ]
+}
+
+/// `a + b`.
+#[inline(always)]
+pub(super) fn add<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
+    [a[0].add(&b[0]), a[1].add(&b[1]), a[2].add(&b[2])]
+}
+
+/// `a − b`.
+#[inline(always)]
+pub(super) fn sub<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
+    [a[0].sub(&b[0]), a[1].sub(&b[1]), a[2].sub(&b[2])]
+}
+
+/// `−a`.
+#[inline(always)]
+pub(super) fn neg<N: Field>(a: &V3<N>) -> V3<N> {
+    [a[0].neg(), a[1].neg(), a[2].neg()]
+}
+
+/// `k a`.
+#[inline(always)]
+pub(super) fn scale<N: Field>(k: &N, a: &V3<N>) -> V3<N> {
+    [k.mul(&a[0]), k.mul(&a[1]), k.mul(&a[2])]
+}
+
+/// `a / d`, each component divided.
+#[inline(always)]
+pub(super) fn divide<N: Field>(a: &V3<N>, d: &N) -> V3<N> {
+    [a[0].div(d), a[1].div(d), a[2].div(d)]
 }
 
 /// A symmetric 3×3 matrix as `[xx, yy, zz, xy, xz, yz]`.
 pub(super) type Sym<N> = [N; 6];
+
+/// A tensor of f64 inputs, exactly.
+#[inline(always)]
+pub(super) fn sym<N: Field>(m: &[f64; 6]) -> Sym<N> {
+    [
+        N::of(m[0]),
+        N::of(m[1]),
+        N::of(m[2]),
+        N::of(m[3]),
+        N::of(m[4]),
+        N::of(m[5]),
+    ]
+}
+
+/// `m k`, each entry multiplied.
+#[inline(always)]
+pub(super) fn sym_times<N: Field>(m: &Sym<N>, k: &N) -> Sym<N> {
+    [
+        m[0].mul(k),
+        m[1].mul(k),
+        m[2].mul(k),
+        m[3].mul(k),
+        m[4].mul(k),
+        m[5].mul(k),
+    ]
+}
 
 #[inline(always)]
 pub(super) fn sym_mul<N: Field>(m: &Sym<N>, x: &V3<N>) -> V3<N> {
@@ -72,7 +137,7 @@ pub(super) fn adjugate<N: Field>(m: &Sym<N>) -> (Sym<N>, N) {
 /// `v + ω × r`.
 #[inline(always)]
 pub(super) fn point_velocity<N: Field>(v: &V3<N>, w: &V3<N>, r: &V3<N>) -> V3<N> {
-    zip(v, &cross(w, r), |a, b| a.add(b))
+    add(v, &cross(w, r))
 }
 
 /// `|x|²` of a vector `x`.

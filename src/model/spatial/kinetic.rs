@@ -48,7 +48,7 @@ pub(super) fn kinetic<N: Radical>(
     // else against the slip, or that P_t where there is no slip.
     let slip = norm2(&sc.ut);
     let w = if !kept && sign(&slip)? == Ordering::Greater {
-        Some((map(&sc.ut, |x| x.neg()), slip))
+        Some((neg(&sc.ut), slip))
     } else {
         let size = norm2(&stick.pt);
         (sign(&size)? == Ordering::Greater).then(|| (stick.pt.clone(), size))
@@ -69,7 +69,7 @@ pub(super) fn kinetic<N: Radical>(
     let along = match &w {
         Some((w, size)) if sliding || (rebound && mu_r > 0.0) => {
             let rho = sc.nu.div(size).sqrt().map_err(Fail::Undecided)?;
-            Some(map(w, |x| rho.mul(x)))
+            Some(scale(&rho, w))
         }
         _ => None,
     };
@@ -151,8 +151,8 @@ pub(super) fn kinetic<N: Radical>(
     // μ_c of the sticking impulse with the equivalent e (rule 5).
     let critical_impulse_ratio = if outputs.critical_impulse_ratio {
         let q = N::of(1.0).add(&e).mul(&sc.un).neg();
-        let target = axpy(&q.div(&sc.nu), &sc.n, &map(&sc.ut, |x| x.neg()));
-        let stick = map(&sym_mul(&sc.adj, &target), |x| x.div(&sc.det));
+        let target = axpy(&q.div(&sc.nu), &sc.n, &neg(&sc.ut));
+        let stick = divide(&sym_mul(&sc.adj, &target), &sc.det);
         sc.ratio(&sc.solution(stick, zero), Output::CriticalImpulseRatio)?
     } else {
         None

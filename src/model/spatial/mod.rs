@@ -58,7 +58,7 @@ use super::vector::*;
 /// are positive (Sylvester's criterion).
 #[inline(always)]
 pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
-    let m = tensor.map(N::of);
+    let m = sym::<N>(tensor);
     let second = m[0].mul_add(&m[1], &m[3].mul(&m[3]).neg());
     let (_, det) = adjugate(&m);
     [m[0].clone(), second, det]
@@ -72,12 +72,12 @@ pub(crate) fn approach<N: Field>(impact: &SpatialImpact) -> N {
     let n = vector(impact.contact.normal);
     // Only the velocities: no tensor inverse, which the decision does not need.
     let velocity = |b: &RigidBody| {
-        let r = zip(&c, &vector(b.position), |c, g| c.sub(g));
+        let r = sub(&c, &vector(b.position));
         point_velocity(&vector(b.velocity), &vector(b.angular_velocity), &r)
     };
     let mut u = velocity(&impact.a);
     if let Some(b) = &impact.b {
-        u = zip(&u, &velocity(b), |x, y| x.sub(y));
+        u = sub(&u, &velocity(b));
     }
     dot(&u, &n)
 }
@@ -221,8 +221,8 @@ fn write<N: Radical>(
         let moment = axpy(&s.kappa, &sc.n, &cross(&b.r, &s.p));
         let dw = map(&sym_mul(&b.inv_i, &moment), |x| signed(x.clone()));
         bodies[index] = SpatialBodyOutcome {
-            velocity: Scene::<N>::vector_out(three(names, 0), &zip(&b.v, &dv, |x, y| x.add(y)))?,
-            angular_velocity: Scene::<N>::vector_out(three(names, 3), &zip(&b.w, &dw, |x, y| x.add(y)))?,
+            velocity: Scene::<N>::vector_out(three(names, 0), &add(&b.v, &dv))?,
+            angular_velocity: Scene::<N>::vector_out(three(names, 3), &add(&b.w, &dw))?,
             velocity_change: Scene::<N>::vector_out(three(names, 6), &dv)?,
             delta_v: out_times_sqrt(names[9], &b.inv_m, &p2)?,
             angular_velocity_change: Scene::<N>::vector_out(three(names, 10), &dw)?,

@@ -20,14 +20,14 @@ impl<N: Field> Body<N> {
     #[inline(always)]
     pub(super) fn new(body: &RigidBody, c: &V3<N>) -> Self {
         let m = N::of(body.mass);
-        let tensor = body.inertia.map(N::of);
+        let tensor = sym::<N>(&body.inertia);
         let (adj, det) = adjugate(&tensor);
         let inv_det = N::of(1.0).div(&det);
         let position = vector(body.position);
         Body {
             inv_m: N::of(1.0).div(&m),
-            inv_i: adj.map(|x| x.mul(&inv_det)),
-            r: zip(c, &position, |c, g| c.sub(g)),
+            inv_i: sym_times(&adj, &inv_det),
+            r: sub(c, &position),
             v: vector(body.velocity),
             w: vector(body.angular_velocity),
             m,
@@ -79,8 +79,8 @@ impl<'a, N: Radical> Scene<'a, N> {
         let mut u = bodies[0].contact_velocity();
         let mut spin = bodies[0].w.clone();
         if let Some(b) = bodies.get(1) {
-            u = zip(&u, &b.contact_velocity(), |x, y| x.sub(y));
-            spin = zip(&spin, &b.w, |x, y| x.sub(y));
+            u = sub(&u, &b.contact_velocity());
+            spin = sub(&spin, &b.w);
         }
         let un = dot(&u, &n);
         let ut = axpy(&un.div(&nu).neg(), &n, &u);
@@ -111,7 +111,7 @@ impl<'a, N: Radical> Scene<'a, N> {
                 w_matrix[slot] = w_matrix[slot].add(&entry);
             }
             let about = sym_mul(&b.inv_i, &n);
-            w = zip(&w, &cross(&about, &b.r), |x, y| x.add(y));
+            w = add(&w, &cross(&about, &b.r));
             k = k.add(&dot(&n, &about));
         }
         let (adj, det) = adjugate(&w_matrix);
@@ -213,12 +213,12 @@ impl<'a, N: Radical> Scene<'a, N> {
                 );
                 let a = sym_mul(&self.adj, &target);
                 match z {
-                    Spin::Off => Ok(Some(self.solution(map(&a, |x| x.div(&self.det)), N::of(0.0)))),
+                    Spin::Off => Ok(Some(self.solution(divide(&a, &self.det), N::of(0.0)))),
                     Spin::Restitution => {
                         let b = sym_mul(&self.adj, &self.w);
                         let schur = self.k.mul_add(&self.det, &dot(&self.w, &b).neg());
                         let kappa = ds.mul_add(&self.det, &dot(&self.w, &a).neg()).div(&schur);
-                        let p = map(&axpy(&kappa.neg(), &b, &a), |x| x.div(&self.det));
+                        let p = divide(&axpy(&kappa.neg(), &b, &a), &self.det);
                         Ok(Some(self.solution(p, kappa)))
                     }
                     Spin::Sliding => {
@@ -277,7 +277,7 @@ impl<'a, N: Radical> Scene<'a, N> {
                         (p_scale, kappa)
                     }
                 };
-                let mut found = self.solution(map(&d, |x| p_scale.mul(x)), kappa);
+                let mut found = self.solution(scale(&p_scale, &d), kappa);
                 if along_normal {
                     // P ∥ n: no tangential part, exactly (not a cancellation
                     // the bounded stages could not certify as zero).
@@ -297,7 +297,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         }
         let slip = norm2(&self.ut);
         let (ws, size) = if sign(&slip)? == Ordering::Greater {
-            (map(&self.ut, |x| x.neg()), slip)
+            (neg(&self.ut), slip)
         } else {
             let Some(stick) = self.solve(Tangential::Kept, z, 0.0)? else {
                 return Ok(None);
@@ -439,17 +439,19 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `(U_t, u_t + U_t)` of an answer that changes `u` by `Δu`.
+    #[inline(always)]
     pub(super) fn slip_after(&self, du: &V3<N>) -> (V3<N>, V3<N>) {
         let dun = dot(du, &self.n).div(&self.nu);
         let dut = axpy(&dun.neg(), &self.n, du);
         (
-            zip(&self.ut, &dut, |x, y| x.add(y)),
+            add(&self.ut, &dut),
             zip(&self.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
         )
     }
 
     /// The work `P·(u + U) + κ (s̃ + S̃)` (`−2 T_L`), with
     /// `u + U = (1 − e)(u·n) n/ν + (u_t + U_t)` (Kelvin and Tait, as Eq 8).
+    #[inline(always)]
     pub(super) fn work(&self, s: &Solution<N>, e: &N, slip_sum: &V3<N>, spin_sum: &N) -> N {
         let normal_work = N::of(1.0).sub(e).mul(&self.un).mul(&s.pn).div(&self.nu);
         s.kappa.mul_add(spin_sum, &dot(&s.p, slip_sum).add(&normal_work))
