@@ -23,8 +23,13 @@ fn random_law(rng: &mut Rng) -> Law {
     } else {
         rng.unit()
     };
-    match rng.next_u64() % 5 {
+    match rng.next_u64() % 6 {
         0 => Law::Frictionless { restitution: e },
+        5 => Law::KineticFriction {
+            value: e,
+            approach_friction: rng.pick(&[0.0, 0.1, 0.3, 1.0, 10.0]),
+            rebound_impulse_ratio: if rng.chance(0.5) { 0.0 } else { rng.range(0.0, 1.0) },
+        },
         1 => Law::ImpulseRatio {
             restitution: e,
             impulse_ratio: rng.range(0.0, 1.0),
@@ -138,7 +143,7 @@ fn close(a: f64, b: f64, scale: f64, what: &str, context: &dyn std::fmt::Debug) 
 fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() {
     let mut rng = Rng::new(0x5_9a7e);
     let (mut answered, mut refused, mut kinetic) = (0, 0, 0);
-    for _ in 0..1500 {
+    for _ in 0..1800 {
         let lamina = |rng: &mut Rng| {
             let m = rng.log_uniform(-2.0, 3.0);
             let k = rng.log_uniform(-2.0, 1.0);
@@ -158,6 +163,10 @@ fn planar_motion_in_space_is_the_planar_answer_bit_for_bit_in_exact_precision() 
             normal: [angle.cos() * rng.log_uniform(-1.0, 1.0), angle.sin()],
         };
         let law = random_law(&mut rng);
+        if matches!(law, Law::KineticFriction { .. }) {
+            // The plane has no Coulomb approach phase (refused there).
+            continue;
+        }
         let mut plane = BodiesImpact { a, b, contact, law };
         // The planar ratios are signed along t̂; in space they oppose the
         // slip (both phases of the kinetic law along the one direction).
@@ -510,6 +519,22 @@ fn check_invariants(i: &SpatialImpact, o: &SpatialOutcome) {
                 assert_eq!(o.restitution, 0.0, "{i:?}");
             }
         }
+        (
+            Regime::Sticking | Regime::Sliding,
+            Law::KineticFriction {
+                value,
+                approach_friction,
+                rebound_impulse_ratio,
+            },
+        ) => {
+            // The approach's tangential impulse within f_A times its normal
+            // one (P_n^A = P_n/(1 + R)), the rebound's μ_R times R of it.
+            let cap = (approach_friction + value * rebound_impulse_ratio) / (1.0 + value);
+            assert!(o.impulse_ratio <= cap * (1.0 + 1e-9) + 1e-12, "{i:?}");
+            if o.regime == Regime::Sliding && size(o.impulse.tangential) > 0.0 {
+                close(o.impulse_ratio, cap, cap, "μ (Coulomb approach, sliding)", i);
+            }
+        }
         _ => {}
     }
     if let (Some(t), Some(regime)) = (i.torsion, o.torsional_regime) {
@@ -531,6 +556,8 @@ fn answers_in_space_conserve_momentum_and_angular_momentum_and_never_create_ener
     let mut rng = Rng::new(0x3d_5eed);
     let (mut answered, mut refused) = (0, 0);
     let mut regimes = std::collections::HashMap::new();
+    let mut regimes_by_law: std::collections::HashMap<&str, std::collections::HashSet<Regime>> =
+        std::collections::HashMap::new();
     for k in 0..4000 {
         let scene = random_scene(&mut rng, k % 3 != 0);
         let fast = solve_in(&scene, Outputs::ALL, Arithmetic::Fast).0;
@@ -541,6 +568,10 @@ fn answers_in_space_conserve_momentum_and_angular_momentum_and_never_create_ener
                 check_invariants(&scene, &f);
                 check_invariants(&scene, &x);
                 *regimes.entry((f.regime, f.torsional_regime)).or_insert(0) += 1;
+                regimes_by_law
+                    .entry(scene.law.describe())
+                    .or_default()
+                    .insert(f.regime);
                 // The two precisions agree to the fast bound (relative to the
                 // scale of each group of outputs).
                 let scale = size([f.impulse.x, f.impulse.y, f.impulse.z]) + f.impulse.normal;
@@ -556,6 +587,11 @@ fn answers_in_space_conserve_momentum_and_angular_momentum_and_never_create_ener
         }
     }
     assert!(answered > 1500, "answered {answered}, refused {refused}");
+    let coulomb_approach = regimes_by_law.get("two-phase kinetic restitution with a Coulomb approach");
+    assert!(
+        coulomb_approach.is_some_and(|r| r.contains(&Regime::Sticking) && r.contains(&Regime::Sliding)),
+        "{regimes_by_law:?}"
+    );
     for regime in [
         Regime::Sticking,
         Regime::Sliding,
