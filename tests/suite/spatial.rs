@@ -1014,3 +1014,112 @@ async fn the_spatial_endpoint_takes_the_two_phase_law_and_refuses_at_its_members
     let (status, headers, body) = app.post("/v1/impacts/planar", &planar).await;
     problem(status, &headers, &body, "/kinetic_restitution/approach_friction");
 }
+
+/// A sphere on a level plane (the normal along a coordinate axis, of any
+/// length): the slip's and the impulse's components along the normal are
+/// exact zeros, which the exact stages decide without falling through to
+/// fractions, so `exact` costs a few times `fast`, not a hundred. Each
+/// answer with generic coefficients settles before the last stage, except
+/// where the law itself makes an exact zero (a sticking contact's final
+/// slip), and its structural zeros are `+0` in both precisions.
+#[test]
+fn a_sphere_on_a_level_plane_settles_before_the_fractions_stage() {
+    use restitution::impact::Stage;
+    let mut rng = Rng::new(0x5be7e);
+    let mut stages = std::collections::BTreeMap::new();
+    for k in 0..600 {
+        let radius = rng.range(0.01, 0.2);
+        let mass = rng.range(0.01, 5.0);
+        let i = 2.0 / 3.0 * mass * radius * radius;
+        let axis = k % 3;
+        let mut normal = [0.0; 3];
+        normal[axis] = rng.pick(&[1.0, 2.0, 3.0, 0.7]);
+        let mut position = [0.0; 3];
+        position[axis] = radius;
+        // An approach along the axis, slip and spin in any direction.
+        let mut velocity = [
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+        ];
+        velocity[axis] = -rng.range(0.5, 20.0);
+        let e = rng.range(0.05, 0.95);
+        let c = rng.range(0.05, 1.5);
+        let law = match k % 6 {
+            0 => Law::Frictionless { restitution: e },
+            1 => Law::Friction {
+                restitution: e,
+                friction: c,
+            },
+            2 => Law::TangentialRestitution {
+                restitution: e,
+                friction: c,
+                tangential_restitution: rng.range(-0.9, 0.9),
+            },
+            3 => Law::ImpulseRatio {
+                restitution: e,
+                impulse_ratio: rng.range(0.05, 0.9),
+            },
+            4 => Law::KineticRestitution {
+                value: e,
+                approach_impulse_ratio: rng.range(0.05, 0.9),
+                rebound_impulse_ratio: rng.range(0.05, 0.9),
+            },
+            _ => Law::KineticFriction {
+                value: e,
+                approach_friction: c,
+                rebound_impulse_ratio: rng.range(0.05, 0.9),
+            },
+        };
+        let scene = SpatialImpact {
+            a: RigidBody {
+                mass,
+                inertia: [i, i, i, 0.0, 0.0, 0.0],
+                position,
+                velocity,
+                angular_velocity: [
+                    rng.range(-300.0, 300.0),
+                    rng.range(-300.0, 300.0),
+                    rng.range(-300.0, 300.0),
+                ],
+            },
+            b: None,
+            contact: SpatialContact {
+                point: [0.0; 3],
+                normal,
+            },
+            law,
+            torsion: rng.chance(0.3).then(|| Twist {
+                restitution: rng.range(0.05, 0.95),
+                friction: rng.range(0.05, 1.0),
+                pitch_radius: 0.1 * radius,
+            }),
+        };
+        let (fast, _) = solve_in(&scene, Outputs::ALL, Arithmetic::Fast);
+        let (exact, stage) = solve_in(&scene, Outputs::ALL, Arithmetic::Exact);
+        match (fast, exact) {
+            (Ok(f), Ok(x)) => {
+                let sticks = f.regime == Regime::Sticking;
+                assert!(sticks || stage != Stage::Rational, "{scene:?}");
+                *stages.entry((sticks, format!("{stage:?}"))).or_insert(0) += 1;
+                for o in [&f, &x] {
+                    let zeros = [
+                        o.contact_velocity.initial.tangential[axis],
+                        o.contact_velocity.r#final.tangential[axis],
+                        o.impulse.tangential[axis],
+                    ];
+                    for z in zeros {
+                        assert_eq!(z.to_bits(), 0.0f64.to_bits(), "{scene:?}: {zeros:?}");
+                    }
+                }
+            }
+            (Err(f), Err(x)) => assert_eq!(f.slug(), x.slug(), "{scene:?}"),
+            (f, x) => panic!("{scene:?}: fast {f:?}, exact {x:?}"),
+        }
+    }
+    eprintln!("(sticks, stage): count {stages:?}");
+    // Both stages before the fractions answer some; sticking scenes are there.
+    let settled = |name: &str| stages.iter().any(|((_, s), n)| s == name && *n > 0);
+    assert!(settled("Compensated") && settled("DoubleDouble"), "{stages:?}");
+    assert!(stages.keys().any(|(sticks, _)| *sticks), "{stages:?}");
+}

@@ -42,10 +42,28 @@ impl<N: Field> Body<N> {
     }
 }
 
+/// The part of `x` normal to `n`, `x − a n` with `a = (x·n)/ν` given. Where
+/// `n` lies along a coordinate axis (one non-zero component, read off the
+/// inputs), that component of the part is the exact zero it is, rather than
+/// the difference of two equal rounded values that no bound can tell from a
+/// tiny one (a sphere on a level plane: the exact stages would otherwise
+/// fall through to fractions). Every field gets the same value; in f64 the
+/// difference is already `+0` for a normal of length a power of two.
+#[inline(always)]
+fn tangential_part<N: Field>(x: &V3<N>, a: &N, n: &V3<N>, axis: Option<usize>) -> V3<N> {
+    let mut part = axpy(&a.neg(), n, x);
+    if let Some(k) = axis {
+        part[k] = N::of(0.0);
+    }
+    part
+}
+
 /// A validated contact in the field.
 pub(super) struct Scene<'a, N> {
     pub(super) n: V3<N>,
     pub(super) nu: N,
+    /// The coordinate axis `n` lies along, if it does ([`tangential_part`]).
+    pub(super) axis: Option<usize>,
     pub(super) bodies: Vec<Body<N>>,
     /// `u` (relative contact-point velocity), `u·n`, `u_t`, `s̃`.
     pub(super) u: V3<N>,
@@ -72,6 +90,12 @@ impl<'a, N: Radical> Scene<'a, N> {
         let c: V3<N> = vector(impact.contact.point);
         let n = vector(impact.contact.normal);
         let nu = norm2(&n);
+        let axis = match impact.contact.normal.map(|c| c != 0.0) {
+            [true, false, false] => Some(0),
+            [false, true, false] => Some(1),
+            [false, false, true] => Some(2),
+            _ => None,
+        };
         let mut bodies = vec![Body::new(&impact.a, &c)];
         if let Some(b) = &impact.b {
             bodies.push(Body::new(b, &c));
@@ -83,7 +107,7 @@ impl<'a, N: Radical> Scene<'a, N> {
             spin = sub(&spin, &b.w);
         }
         let un = dot(&u, &n);
-        let ut = axpy(&un.div(&nu).neg(), &n, &u);
+        let ut = tangential_part(&u, &un.div(&nu), &n, axis);
         let s = dot(&spin, &n);
         // W = Σ 1/m + Σ cᵢᵀ I⁻¹ cⱼ with cᵢ = r × eᵢ; w = Σ (I⁻¹ n) × r; k = Σ nᵀ I⁻¹ n.
         let zero = N::of(0.0);
@@ -120,6 +144,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         Scene {
             n,
             nu,
+            axis,
             bodies,
             u,
             un,
@@ -141,7 +166,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     #[inline(always)]
     pub(super) fn solution(&self, p: V3<N>, kappa: N) -> Solution<N> {
         let pn = dot(&p, &self.n);
-        let pt = axpy(&pn.div(&self.nu).neg(), &self.n, &p);
+        let pt = tangential_part(&p, &pn.div(&self.nu), &self.n, self.axis);
         Solution { p, kappa, pn, pt }
     }
 
@@ -442,7 +467,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     #[inline(always)]
     pub(super) fn slip_after(&self, du: &V3<N>) -> (V3<N>, V3<N>) {
         let dun = dot(du, &self.n).div(&self.nu);
-        let dut = axpy(&dun.neg(), &self.n, du);
+        let dut = tangential_part(du, &dun, &self.n, self.axis);
         (
             add(&self.ut, &dut),
             zip(&self.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
