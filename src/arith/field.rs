@@ -164,7 +164,7 @@ impl Field for Compensated {
     }
 }
 
-impl Field for Filtered {
+impl<const RUNNING: bool> Field for Filtered<RUNNING> {
     type Undecided = Uncertain;
     #[inline(always)]
     fn of(x: f64) -> Self {

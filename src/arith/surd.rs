@@ -260,7 +260,7 @@ impl Radical for f64 {
     }
 }
 
-impl Radical for super::Filtered {
+impl<const RUNNING: bool> Radical for super::Filtered<RUNNING> {
     #[inline(always)]
     fn sqrt(&self) -> Result<Self, super::Uncertain> {
         super::Filtered::sqrt(self)
