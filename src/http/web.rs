@@ -185,6 +185,14 @@ const PRESETS: &[(&str, &str, &str, Source, Option<&str>, &[(&str, f64)])] = &[
         None,
         &[],
     ),
+    (
+        "cube-corner",
+        "Tossed cube, a corner on the board (fitted e and f)",
+        "spatial",
+        Source::Impact(include_str!("../../examples/spatial_cube_corner.json")),
+        None,
+        &[],
+    ),
 ];
 
 /// The presets as the page reads them: `[{id, label, case, request, sweep?}]`,
