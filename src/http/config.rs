@@ -129,6 +129,11 @@ pub struct ServiceConfig {
     /// A connection must send a request's complete headers within this many milliseconds.
     #[arg(long, env = "RESTITUTION_HEADER_READ_TIMEOUT_MS", default_value_t = 5_000)]
     pub header_read_timeout_ms: u64,
+    /// A connection whose client takes none of the bytes sent to it for this many
+    /// milliseconds is closed, and what was queued for it dropped.
+    #[arg(long, env = "RESTITUTION_WRITE_TIMEOUT_MS", default_value_t = 30_000,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub write_timeout_ms: u64,
     /// After SIGTERM or SIGINT, keep serving with `/readyz` answering 503 for this many
     /// milliseconds before the listener closes (let a load balancer see it first).
     #[arg(long, env = "RESTITUTION_SHUTDOWN_DRAIN_MS", default_value_t = 0)]
@@ -187,6 +192,7 @@ impl Default for ServiceConfig {
             max_streamed_sweeps: 64,
             sweep_stall_timeout_ms: 30_000,
             header_read_timeout_ms: 5_000,
+            write_timeout_ms: 30_000,
             shutdown_drain_ms: 0,
             metrics: true,
             shutdown_grace_ms: 10_000,

@@ -22,6 +22,7 @@ pub mod sweeps;
 pub mod telemetry;
 mod watchdog;
 pub mod web;
+mod write_timeout;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -466,6 +467,7 @@ pub async fn serve_router_until(
     // not a timer hyper would arm for every request head.
     builder.http1().header_read_timeout(None);
     let header_timeout = Duration::from_millis(config.header_read_timeout_ms);
+    let write_timeout = Duration::from_millis(config.write_timeout_ms);
     let graceful = GracefulShutdown::new();
     tokio::pin!(signal);
     loop {
@@ -486,6 +488,7 @@ pub async fn serve_router_until(
                     inner: router.clone(),
                     watch: watch.clone(),
                 });
+                let stream = write_timeout::WriteTimeout::new(stream, write_timeout);
                 let connection = builder.serve_connection_with_upgrades(TokioIo::new(stream), service);
                 let connection = graceful.watch(connection.into_owned());
                 tokio::spawn(async move {

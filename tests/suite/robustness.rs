@@ -555,6 +555,46 @@ async fn a_reader_that_stops_reading_a_stream_is_dropped_and_its_work_stops() {
     drop(stream);
 }
 
+/// A client that stops reading is cut off by the write timeout, whatever
+/// the sweep's own stall timeout: the connection closes and the stream's
+/// producer stops with it.
+#[tokio::test]
+async fn a_connection_whose_client_stops_reading_is_closed_by_the_write_timeout() {
+    let config = ServiceConfig {
+        write_timeout_ms: 300,
+        // Far longer than the test: only the write timeout can end it.
+        sweep_stall_timeout_ms: 600_000,
+        ..ServiceConfig::default()
+    };
+    let app = spawn_app(config).await;
+    let mut stream = request_long_csv_sweep(&app).await;
+    let mut first = vec![0u8; 4096];
+    let n = timeout(BOUND, stream.read(&mut first)).await.unwrap().unwrap();
+    assert!(String::from_utf8_lossy(&first[..n]).starts_with("HTTP/1.1 200"));
+    // Stop reading, keep the connection open: the socket buffers fill, the
+    // server's writes wait, and the timeout closes the connection.
+    let stopped = timeout(BOUND, async {
+        while app.streams.active() > 0 {
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+    })
+    .await;
+    assert!(stopped.is_ok(), "the stream ended after the write timeout");
+    // What the socket still holds drains, then the connection is closed.
+    let mut buffer = vec![0u8; 1 << 16];
+    let closed = timeout(BOUND, async {
+        loop {
+            match stream.read(&mut buffer).await {
+                Ok(0) | Err(_) => break,
+                Ok(_) => {}
+            }
+        }
+    })
+    .await;
+    assert!(closed.is_ok(), "the server closed the connection");
+    still_serving(&app).await;
+}
+
 #[tokio::test]
 async fn the_api_key_guards_every_route_but_health() {
     let config = ServiceConfig {
