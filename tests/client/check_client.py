@@ -17,7 +17,7 @@ from restitution_client.api.impacts import (
     impacts_tangential,
     impacts_torsional,
 )
-from restitution_client.api.fits import fits_planar, fits_tangential, fits_torsional
+from restitution_client.api.fits import fits_planar, fits_spatial, fits_tangential, fits_torsional
 from restitution_client.api.service import healthz
 from restitution_client.api.sweeps import plan, sweeps
 from restitution_client.models import (
@@ -33,6 +33,8 @@ from restitution_client.models import (
     SweepReduction,
     SpatialContactRequest,
     SpatialContactResponse,
+    SpatialFitRequest,
+    SpatialFitResponse,
     Problem,
     SweepRequest,
     TangentialFitRequest,
@@ -223,6 +225,26 @@ def main(base):
         dict(ball, initial={"normal": -3.0, "spin": w}, final={"normal": 2.4, "spin": s}) for w, s in spins]}))
     check("torsional fit", torsional_fit is not None and close(torsional_fit.torsional_restitution.value, 0.2, 1e-9)
           and close(torsional_fit.torsional_friction.value, 0.3, 1e-9), repr(torsional_fit))
+
+    # Spatial fit: e and f back from two tennis-ball bounces answered above
+    # through the client (one slides, one sticks).
+    impacts = []
+    for vx, wy in [(20.0, -300.0), (2.0, 0.0)]:
+        scene = {"bodies": [{"mass": 0.057, "inertia": {"sphere": {"radius": 0.033, "hollow": True}},
+                             "position": {"x": 0.0, "y": 0.0, "z": 0.033},
+                             "velocity": {"x": vx, "y": 0.0, "z": -10.0},
+                             "angular_velocity": {"x": 0.0, "y": wy, "z": 0.0}}],
+                 "contact": {"point": {"x": 0.0, "y": 0.0, "z": 0.0}, "normal": {"x": 0.0, "y": 0.0, "z": 1.0}}}
+        answer = impacts_spatial.sync(client=client, body=SpatialContactRequest.from_dict(
+            dict(scene, restitution=0.75, friction=0.6)))
+        dv = answer.bodies[0].velocity_change
+        m = lambda v: {"value": v, "uncertainty": 0.01}
+        impacts.append(dict(scene, measured=[{"velocity_change": {"x": m(dv.x), "y": m(dv.y), "z": m(dv.z)}}]))
+    spatial_fit = fits_spatial.sync(client=client, body=SpatialFitRequest.from_dict({"law": "friction", "impacts": impacts}))
+    fitted = {c.member: c.value for c in spatial_fit.coefficients} if isinstance(spatial_fit, SpatialFitResponse) else {}
+    # Members are JSON pointers into the request.
+    check("spatial fit", close(fitted.get("/restitution", math.nan), 0.75, 1e-9)
+          and close(fitted.get("/friction", math.nan), 0.6, 1e-9), repr(spatial_fit))
 
     print(f"{len(FAILURES)} failed" if FAILURES else "all client checks passed")
     return 1 if FAILURES else 0
