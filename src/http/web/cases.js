@@ -68,7 +68,9 @@ const XYZ = ['x', 'y', 'z'];
 const kineticInSpace = (approach) => [
   field('/kinetic_restitution/value', 'R', '', 'kinetic coefficient of restitution P<sub>n</sub><sup>R</sup>/P<sub>n</sub><sup>A</sup> (Eq 9)', UNIT_INTERVAL),
   approach,
-  field('/kinetic_restitution/rebound_impulse_ratio', 'μ<sub>R</sub>', '', 'rebound phase |P<sub>t</sub>|/P<sub>n</sub>, along the approach’s direction', NON_NEGATIVE),
+  // No lower bound on the page: the member's schema is the plane's too, where
+  // a ratio may be negative; the service refuses a negative one in space.
+  field('/kinetic_restitution/rebound_impulse_ratio', 'μ<sub>R</sub>', '', 'rebound phase |P<sub>t</sub>|/P<sub>n</sub> (≥ 0), along the approach’s direction'),
 ];
 
 // A rigid body in space (spatial case), body `i`.
@@ -181,7 +183,7 @@ export const CASES = [
         { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed ratio |P<sub>t</sub>|/P<sub>n</sub>, opposing the slip', NON_NEGATIVE)] },
         { id: 'tangential', label: 'tangential e<sub>t</sub>', parts: [restitution(), friction(), tangentialRestitution()] },
         { id: 'frictionless', label: 'frictionless', parts: [restitution()] },
-        { id: 'kinetic', label: 'kinetic R', parts: kineticInSpace(field('/kinetic_restitution/approach_impulse_ratio', 'μ<sub>A</sub>', '', 'approach phase |P<sub>t</sub>|/P<sub>n</sub>, opposing the slip', NON_NEGATIVE)) },
+        { id: 'kinetic', label: 'kinetic R', parts: kineticInSpace(field('/kinetic_restitution/approach_impulse_ratio', 'μ<sub>A</sub>', '', 'approach phase |P<sub>t</sub>|/P<sub>n</sub> (≥ 0), opposing the slip')) },
         { id: 'kinetic-coulomb', label: 'kinetic R, Coulomb approach', parts: kineticInSpace(field('/kinetic_restitution/approach_friction', 'f<sub>A</sub>', '', 'Coulomb friction of the approach phase', NON_NEGATIVE)) },
       ], (r) => ('kinetic_restitution' in r ? ('approach_friction' in r.kinetic_restitution ? 'kinetic-coulomb' : 'kinetic')
         : 'tangential_restitution' in r ? 'tangential' : 'impulse_ratio' in r ? 'ratio'
