@@ -10,8 +10,10 @@
 //! `--plot-only` measures nothing: it redraws `docs/accuracy.svg` from the
 //! table already in `docs/accuracy.md`.
 //!
-//! Methods: `fast` (the service's fast mode: closed forms, escalating extreme
-//! inputs to the exact evaluator), `nalgebra` (the 3×3 momentum system by LU,
+//! Methods: `fast` (the service's fast mode: the model in f64 with error
+//! bounds, escalating to the exact stages an impact with a decision too close
+//! to its tie, an output whose bound exceeds the promised error, or an input
+//! outside the fast range; the table counts each), `nalgebra` (the 3×3 momentum system by LU,
 //! with the regime the exact answer found), `exact` (double-double with a
 //! certified bound, rational fallback) and `rational` (exact rationals only).
 //!
@@ -26,7 +28,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use linear::{TangentialClosure, solve_momentum};
-use restitution::impact::{Arithmetic, solve_in};
+use restitution::impact::{Arithmetic, Stage, fast_decisions_escalated, fast_outputs_escalated, solve_in};
 use restitution::plot::{Color, Figure, LegendEntry, Marker, Markers, Scale, Shape};
 use restitution::{
     Body, Contact, Law, Outputs, PlanarImpact, PlanarScene, PlanarVelocity, Precision, Regime,
@@ -229,6 +231,28 @@ struct Row {
     max_scaled: f64,
     solved: usize,
     failed: usize,
+    /// `fast` only: impacts sent to the exact stages, by reason (a close
+    /// decision, an output past its bound, the fast range or a refusal).
+    escalated: Option<[usize; 3]>,
+}
+
+/// How many of `inputs` the fast mode sends to the exact stages, by reason:
+/// a decision within its bound of a tie, an output whose bound exceeds the
+/// promised error, and the rest (inputs outside the fast range, refusals).
+fn escalations<I>(inputs: &[I], run: impl Fn(&I) -> Stage) -> [usize; 3] {
+    let mut counts = [0; 3];
+    for input in inputs {
+        let (decisions, outputs) = (fast_decisions_escalated(), fast_outputs_escalated());
+        let stage = run(input);
+        if fast_decisions_escalated() > decisions {
+            counts[0] += 1;
+        } else if fast_outputs_escalated() > outputs {
+            counts[1] += 1;
+        } else if stage != Stage::Fast {
+            counts[2] += 1;
+        }
+    }
+    counts
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -281,6 +305,7 @@ fn measure<I, O>(
         max_scaled,
         solved,
         failed,
+        escalated: None,
     }
 }
 
@@ -336,7 +361,7 @@ fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec
         velocity_error(p, got, reference)
     };
     let reps_fast = 400 / scale;
-    rows.push(measure(
+    let mut fast = measure(
         case,
         set,
         "fast",
@@ -348,7 +373,11 @@ fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec
                 .map(|o| o.final_velocity)
         },
         compare,
-    ));
+    );
+    fast.escalated = Some(escalations(&inputs, |(p, _, _)| {
+        solve_in(&p.impact(law), Outputs::ALL, Arithmetic::Fast).1
+    }));
+    rows.push(fast);
     rows.push(measure(
         case,
         set,
@@ -404,7 +433,7 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
         Some((steps(*got, *reference), (got - reference).abs() / ulp(scale)))
     };
     let scale = if set == Set::Typical { 1 } else { 4 };
-    rows.push(measure(
+    let mut fast = measure(
         "torsional",
         set,
         "fast",
@@ -416,7 +445,11 @@ fn torsional_rows(set: Set, n: usize, rows: &mut Vec<Row>) {
                 .map(|o| o.final_spin)
         },
         compare,
-    ));
+    );
+    fast.escalated = Some(escalations(&inputs, |(impact, _)| {
+        solve_in(impact, Outputs::ALL, Arithmetic::Fast).1
+    }));
+    rows.push(fast);
     rows.push(measure(
         "torsional",
         set,
@@ -601,13 +634,16 @@ fn main() {
     }
     let mut table = String::new();
     table.push_str(
-        "| case | set | method | median ns/solve | mean ns/solve | median error (steps) | max error (steps) | max error (ulps of scale) | answered | not answered |\n",
+        "| case | set | method | median ns/solve | mean ns/solve | median error (steps) | max error (steps) | max error (ulps of scale) | answered | not answered | escalated: decision, output, range |\n",
     );
-    table.push_str("|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    table.push_str("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for r in &rows {
+        let escalated = r
+            .escalated
+            .map_or_else(|| "–".to_owned(), |[d, o, x]| format!("{d}, {o}, {x}"));
         writeln!(
             table,
-            "| {} | {} | {} | {:.0} | {:.0} | {} | {} | {:.2} | {} | {} |",
+            "| {} | {} | {} | {:.0} | {:.0} | {} | {} | {:.2} | {} | {} | {} |",
             r.case,
             r.set.name(),
             r.method,
@@ -617,7 +653,8 @@ fn main() {
             r.max_steps,
             r.max_scaled,
             r.solved,
-            r.failed
+            r.failed,
+            escalated
         )
         .expect("string");
     }
