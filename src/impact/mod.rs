@@ -443,21 +443,28 @@ fn fast_or_exact<T>(
     }
 }
 
-/// The model in `Filtered`: inlined in release; in a frame of its own in
-/// debug builds, where the whole model inlined takes about a megabyte of
-/// stack (no slot is shared at opt-level 0) that would otherwise stay under
-/// the exact stages' frames and overflow a 2 MiB thread.
+/// The model in `Filtered`, through `kernels::run`: one compiled body per
+/// model and bound, whoever calls (a sweep's every output format, a fit, a
+/// single solve), rather than one inlined into each caller, which made the
+/// release build's fat LTO run for tens of minutes. In debug builds in a
+/// frame of its own too, where the whole model inlined takes about a
+/// megabyte of stack (no slot is shared at opt-level 0) that would
+/// otherwise stay under the exact stages' frames and overflow a 2 MiB
+/// thread.
 #[cfg_attr(debug_assertions, inline(never))]
 #[cfg_attr(not(debug_assertions), inline(always))]
 fn run_fast<const RUNNING: bool, T>(model: &impl Model<T>, out: &mut T) -> Exact<Filtered<RUNNING>, ()> {
-    model.run::<Filtered<RUNNING>>(out)
+    crate::kernels::run(
+        #[inline(always)]
+        || model.run::<Filtered<RUNNING>>(out),
+    )
 }
 
 /// The f64 answer with the decisions f64 takes (no error bound), or the exact
 /// one where the evaluation leaves the f64 range or refuses.
 #[inline(always)]
 fn unfiltered_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
-    match model.run::<f64>(out) {
+    match stage::<f64, T>(model, out) {
         Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, out),
     }
