@@ -7,7 +7,10 @@ Checks: the form's fields and ranges against openapi/openapi.json; the Maw
 disc (oblique) computed in the page equal to the API's own answer; refusals
 marking the field the problem's pointer names (aria-invalid, the detail next
 to it); every case and the two-body presets computed; a sweep plotted (the
-service's SVG) and downloaded; a tangential and a torsional fit; the state
+service's SVG) and downloaded; a tangential and a torsional fit; spatial
+fits generated from the scene (the cube on a board; two DEM spheres with a
+twist law) whose coefficients are the scene's, and their refusals marking a
+CSV row, the law, the Impact section's field; the state
 restored from the URL; "copy as curl" run and "copy as Python" compiled;
 keyboard-only use (Tab through the Maw form, Enter submits); axe-core with no
 serious or critical violation; no script error and no policy violation in
@@ -254,6 +257,196 @@ def check_fields(driver, doc):
     check(f"the form's {count} fields carry the API's names and ranges", not problems, "; ".join(problems))
 
 
+# --- the spatial fit ---------------------------------------------------------
+
+def fit_cells(driver):
+    """The fit table: API name -> [value, standard error] as the page holds them."""
+    return driver.execute_script(
+        "return Object.fromEntries([...document.querySelectorAll('#fit-table tbody tr')]"
+        ".map(tr => [tr.querySelector('code').textContent,"
+        " [...tr.querySelectorAll('td.num')].map(td => td.dataset.value)]))")
+
+
+def fit_lines(driver):
+    return driver.find_element(By.ID, "fit-csv").get_attribute("value").splitlines()
+
+
+def run_fit(driver, what, refused=False):
+    driver.find_element(By.ID, "fit-run").click()
+    done = "The service refused" if refused else "Fitted"
+    wait(driver, lambda d: d.find_element(By.ID, "fit-status").text.startswith(done), f"{what}: the fit")
+
+
+def sample_from_scene(driver, what):
+    Select(driver.find_element(By.ID, "fit-kind")).select_by_value("spatial")
+    driver.execute_script("document.getElementById('fit-status').textContent = ''")
+    driver.find_element(By.ID, "fit-sample").click()
+    wait(driver, lambda d: "press Fit" in d.find_element(By.ID, "fit-status").text, f"{what}: data from the scene")
+    return fit_lines(driver)
+
+
+def csv_request(scene, law, lines):
+    """The spatial fit's request for one impact of `scene` from CSV `lines`."""
+    header = lines[0].split(",")
+    measured = []
+    for line in lines[1:]:
+        change = {}
+        for column, cell in zip(header, line.split(",")):
+            if column != "impact":
+                vector, component, part = column.split(".")
+                change.setdefault(vector, {}).setdefault(component, {})[part] = float(cell)
+        measured.append(change)
+    return {"law": law, "impacts": [{"bodies": scene["bodies"], "contact": scene["contact"], "measured": measured}]}
+
+
+def has_member(doc, schema, keys):
+    for key in keys:
+        schema = member(doc, schema, key) if schema is not None else None
+    return schema is not None
+
+
+def edit_scene(driver, what, edits):
+    """Types `edits` (field id -> text) into the Impact section and waits for the outcome."""
+    before = seq(driver)
+    for field_id, text in edits.items():
+        set_field(driver, field_id, text)
+    driver.find_element(By.ID, "compute").click()
+    wait_outcome(driver, before, f"{what}: the edited outcome")
+
+
+def generate_from_scene(driver, base, doc, what, law):
+    """"Generate from the scene": the CSV holds the service's own ΔV and Δω
+    of the Impact section's scene (to 8 digits), one row per body, under
+    columns that are members of the API's measured change. Answers the
+    scene and the CSV's lines."""
+    scene = page_state(driver)["request"]
+    lines = sample_from_scene(driver, what)
+    got = driver.find_element(By.ID, "fit-law").get_attribute("value")
+    check(f"{what}: the spatial fit's law is the scene's", got == law, got)
+    header, rows = lines[0].split(","), [[float(x) for x in line.split(",")] for line in lines[1:]]
+    status, answer = api(base, "/v1/impacts/spatial", scene)
+    check(f"{what}: one CSV row per body", status == 200 and len(rows) == len(answer["bodies"]) == len(scene["bodies"]), str(lines))
+    schema = resolve(doc, doc["components"]["schemas"]["SpatialMeasuredChangeDto"])
+    unknown = [c for c in header[1:] if not has_member(doc, schema, c.split("."))]
+    check(f"{what}: the CSV's columns are the API's", header[0] == "impact" and not unknown, str(unknown))
+    far = []
+    for row, body in zip(rows, answer["bodies"]):
+        for column, value in zip(header, row):
+            parts = column.split(".")
+            if parts[-1] == "value" and abs(value - body[parts[0]][parts[1]]) > 1e-7 * abs(body[parts[0]][parts[1]]):
+                far.append(f"{column}: {value} vs {body[parts[0]][parts[1]]}")
+    check(f"{what}: the CSV holds the scene's ΔV and Δω", not far, "; ".join(far))
+    return scene, lines
+
+
+def fit_equals_scene(driver, what, expected, bodies, impacts=1):
+    """Fits the CSV: the coefficients are `expected` (to the data's 8
+    digits), χ² is the rounding's, and each impact has its regimes and 6
+    residuals per body."""
+    run_fit(driver, what)
+    cells = fit_cells(driver)
+    for name, value in expected["coefficients"].items():
+        got = float(cells.get(name, ["nan"])[0])
+        check(f"{what}: the fit finds the scene's {name} = {value}", abs(got - value) <= 1e-6 * max(1.0, abs(value)), f"{got} ({cells})")
+        se = cells.get(name, ["nan", "nan"])[1]
+        check(f"{what}: {name} has its standard error", se == "" or float(se) > 0, se)
+    fitted = sorted(n for n in cells if not n.startswith(("chi_squared", "degrees_of_freedom", "impacts")))
+    check(f"{what}: nothing else is fitted", fitted == sorted(expected["coefficients"]), str(fitted))
+    chi2 = float(cells.get("chi_squared", ["nan"])[0])
+    check(f"{what}: χ² is the rounding's (< 1e-6)", chi2 < 1e-6, str(chi2))
+    dof = int(cells.get("degrees_of_freedom", ["-1"])[0])
+    check(f"{what}: the degrees of freedom are the data's less the coefficients",
+          dof == 6 * bodies * impacts - len(expected["coefficients"]), str(dof))
+    for i in range(impacts):
+        residuals = cells.get(f"impacts[{i}].residuals", [""])[0].split(", ")
+        check(f"{what}: impact {i}'s residuals, 6 per body", len(residuals) == 6 * bodies, str(residuals))
+        for key, regimes in expected["regimes"].items():
+            got = cells.get(f"impacts[{i}].{key}", [""])[0]
+            check(f"{what}: impact {i}'s {key}", got == regimes[i], got)
+    return cells
+
+
+def check_spatial_fits(driver, base, doc):
+    # The cube of the preset, one body sliding on the board: e and f.
+    choose_preset(driver, "cube-corner")
+    scene, lines = generate_from_scene(driver, base, doc, "cube-corner", "friction")
+    fit_equals_scene(driver, "cube-corner", {
+        "coefficients": {"restitution": 0.28, "friction": 0.17}, "regimes": {"regime": ["sliding"]}}, bodies=1)
+    # Labelled from the quantity table, as the outcome is.
+    quantities = json.load(urllib.request.urlopen(base + "/assets/quantities.json", timeout=20))
+    names = {q["path"]: q["name"] for c in quantities["cases"] for q in c["inputs"]}
+    labels = driver.execute_script(
+        "return Object.fromEntries([...document.querySelectorAll('#fit-table tbody tr')]"
+        ".map(tr => [tr.querySelector('code').textContent, tr.querySelector('th').textContent]))")
+    check("the spatial fit's coefficients are labelled from the quantity table",
+          names["/restitution"] in labels.get("restitution", "") and names["/friction"] in labels.get("friction", ""), str(labels))
+
+    # A cell that is not a number: the refusal names its row and member.
+    csv = driver.find_element(By.ID, "fit-csv")
+    cells = lines[1].split(",")
+    cells[1] = "abc"
+    driver.execute_script("arguments[0].value = arguments[1]", csv, "\n".join([lines[0], ",".join(cells)]))
+    run_fit(driver, "a cell that is not a number", refused=True)
+    error = driver.find_element(By.ID, "fit-csv-error").text
+    check("a refused spatial row is named: its row and member", csv.get_attribute("aria-invalid") == "true"
+          and error.startswith("Row 1 (velocity_change.x.value)"), error)
+
+    # Two DEM spheres sliding, with Coulomb friction: e and f from both bodies' changes.
+    choose_preset(driver, "dem-spheres")
+    driver.find_element(By.ID, "law-friction").click()
+    edit_scene(driver, "dem-spheres", {"f-friction": "0.01"})
+    generate_from_scene(driver, base, doc, "dem-spheres", "friction")
+    fit_equals_scene(driver, "dem-spheres", {
+        "coefficients": {"restitution": 0.9, "friction": 0.01}, "regimes": {"regime": ["sliding"]}}, bodies=2)
+
+    # The cube with a twist law: one impact spins slowly (e_z answers), a
+    # second, its own spin in the CSV's angular_velocity.z column, fast (μ_z
+    # caps it); together they give e, f, e_z and μ_z.
+    choose_preset(driver, "cube-corner")
+    driver.find_element(By.ID, "toggle-twist").click()
+    edit_scene(driver, "the cube with a twist law", {
+        "f-torsion-restitution": "0.3", "f-torsion-friction": "0.4", "f-torsion-pitch_radius": "0.01",
+        "f-bodies-0-angular_velocity-z": "3"})
+    scene, lines = generate_from_scene(driver, base, doc, "the cube with a twist law", "friction")
+    fast = json.loads(json.dumps(scene))
+    fast["bodies"][0]["angular_velocity"]["z"] = 30.0
+    status, answer = api(base, "/v1/impacts/spatial", fast)
+    sigma = lines[1].split(",")[2::2]  # the generated uncertainties
+    values = [answer["bodies"][0][v][c] for v in ("velocity_change", "angular_velocity_change") for c in "xyz"]
+    row = ["1"] + [x for value, s in zip(values, sigma) for x in (f"{value:.8g}", s)]
+    text = "\n".join([lines[0] + ",angular_velocity.z", lines[1] + ",", ",".join(row) + ",30"])
+    driver.execute_script("arguments[0].value = arguments[1]", driver.find_element(By.ID, "fit-csv"), text)
+    fit_equals_scene(driver, "the cube with a twist law, two impacts", {
+        "coefficients": {"restitution": 0.28, "friction": 0.17, "torsion.restitution": 0.3, "torsion.friction": 0.4},
+        "regimes": {"regime": ["sliding", "sliding"], "torsional_regime": ["restitution", "sliding"]}}, bodies=1, impacts=2)
+
+    # The DEM spheres as the preset has them (tangential restitution) stick:
+    # no impact determines f, refused at /law, which the page marks with the
+    # problem's detail.
+    choose_preset(driver, "dem-spheres")
+    scene, lines = generate_from_scene(driver, base, doc, "the sticking spheres", "tangential_restitution")
+    run_fit(driver, "the sticking spheres", refused=True)
+    status, problem = api(base, "/v1/fits/spatial", csv_request(scene, "tangential_restitution", lines))
+    check("the API refuses the sticking spheres' friction at /law", status == 422 and problem.get("pointer") == "/law", json.dumps(problem))
+    law = driver.find_element(By.ID, "fit-law")
+    error = driver.find_element(By.ID, "fit-law-error").text
+    check("the page marks the law with the problem's detail",
+          law.get_attribute("aria-invalid") == "true" and error == problem.get("detail"), error)
+
+    # A refused member of the scene (a negative pitch radius) is marked on the Impact section.
+    choose_preset(driver, "tennis-sidespin")
+    sample_from_scene(driver, "the sidespin ball")
+    set_field(driver, "f-torsion-pitch_radius", "-0.005")
+    # The page refuses it as you type; unmark it, so the mark is the fit's.
+    wait(driver, lambda d: d.find_element(By.ID, "outcome-status").text.startswith("Refused"), "the refused scene")
+    driver.execute_script("document.getElementById('f-torsion-pitch_radius').removeAttribute('aria-invalid')")
+    run_fit(driver, "a negative pitch radius", refused=True)
+    field = driver.find_element(By.ID, "f-torsion-pitch_radius")
+    check("a refused pitch radius is marked on the Impact section", field.get_attribute("aria-invalid") == "true"
+          and "/torsion/pitch_radius" in driver.find_element(By.ID, "fit-problem").text, driver.find_element(By.ID, "fit-problem").text)
+    set_field(driver, "f-torsion-pitch_radius", "0.005")
+
+
 # --- the test ----------------------------------------------------------------
 
 def main():
@@ -438,6 +631,7 @@ def run(driver, base, axe_source, doc, shots, profile):
     driver.execute_script("arguments[0].value = arguments[1]", csv, "\n".join(lines))
     driver.find_element(By.ID, "fit-run").click()
     wait(driver, lambda d: d.find_element(By.ID, "fit-csv").get_attribute("aria-invalid") == "true", "the CSV marked invalid")
+    check_spatial_fits(driver, base, doc)
     run_axe(driver, axe_source, "fits")
 
     # Keyboard only: Tab from the first field through the Maw form to

@@ -40,6 +40,7 @@ function showCase(id, request) {
   app.outcome = null;
   renderOutcome($('outcome').querySelector('tbody'), {});
   sweep.refreshChoices(false);
+  fit.sceneChanged();
 }
 
 function remember() {
@@ -52,6 +53,7 @@ function changed() {
   app.timer = setTimeout(() => {
     remember();
     drawScene($('scene'), app.spec.id, currentRequest(), null);
+    fit.sceneChanged();
     if ($('live').checked) compute();
   }, 250);
 }
@@ -124,6 +126,8 @@ const sweep = new SweepPanel({
 const fit = new FitPanel({
   form: () => app.form,
   planarScene: () => (app.spec.id === 'planar' ? app.form.request() : app.presets.find((p) => p.id === 'cars')?.request),
+  // The spatial case's scene, or (on another case) the cube whose e and f a fit finds.
+  spatialScene: () => (app.spec?.id === 'spatial' && app.form ? app.form.request() : app.presets.find((p) => p.id === 'cube-corner')?.request),
   showImpactProblem,
 });
 

@@ -4,11 +4,13 @@
 // over the points.
 
 import { post, problemText } from './api.js';
-import { h, parseValue, setIn, showError, clearError } from './form.js';
+import { h, apiName, parseValue, setIn, showError, clearError } from './form.js';
+import { outputLabel } from './cases.js';
 import { copy, curl } from './share.js';
 import { chart } from './plot.js';
 
 const $ = (id) => document.getElementById(id);
+const XYZ = ['x', 'y', 'z'];
 
 // Per fit: the endpoint, the members shared by every row unless the CSV has
 // a column for them, the columns, and how to read the fitted coefficients.
@@ -38,7 +40,31 @@ const KINDS = {
     hint: 'One row per body, in the order of the scene\'s bodies: its measured ΔV (x, y) and ΔΩ, each with its standard uncertainty. The scene (bodies before the impact, contact) is the Impact section\'s planar case.',
     coefficients: [['restitution', 'e'], ['impulse_ratio', 'μ'], ['normal/angle', 'angle of n (rad)'], ['chi_squared', 'χ²'], ['degrees_of_freedom', 'degrees of freedom']],
   },
+  // The coefficients come back as a list, each named by its member of a
+  // spatial impact request: labelled from the quantity table (no list here).
+  spatial: {
+    endpoint: '/v1/fits/spatial',
+    common: [],
+    columns: ['impact', ...['velocity_change', 'angular_velocity_change'].flatMap((v) => XYZ.flatMap((c) => [`${v}.${c}.value`, `${v}.${c}.uncertainty`]))],
+    hint: 'One row per body per impact, in the order of the scene\'s bodies (A, then B): impact numbers the impact the row belongs to (without it, each run of rows as long as the scene\'s bodies is one impact); ΔV and Δω (x, y, z), each with its standard uncertainty (Δω blank: not measured). Each impact starts from the Impact section\'s spatial scene (bodies before the impact, contact); a column naming a member of a body (velocity.x, angular_velocity.z, position.y, …) or of the contact (contact.normal.z, …) sets it for that row\'s impact. The law fitted is the scene\'s (frictionless is fitted as the impulse ratio μ, 0 when frictionless), with the twist law when the scene has one, at its pitch radius.',
+  },
 };
+
+// The spatial fit's law: the Impact section's spatial law, as the fit
+// request names it (a frictionless scene: the impulse ratio, μ = 0).
+function spatialLaw(scene) {
+  if (scene && 'kinetic_restitution' in scene) {
+    return 'approach_friction' in (scene.kinetic_restitution || {}) ? 'kinetic_friction' : 'kinetic_restitution';
+  }
+  if (scene && 'tangential_restitution' in scene) return 'tangential_restitution';
+  if (scene && 'friction' in scene) return 'friction';
+  return 'impulse_ratio'; // a prescribed ratio, or frictionless: μ = 0
+}
+
+// Members of one CSV row of the spatial fit: the impact it belongs to, its
+// measured change, the contact's and the body's own members.
+const MEASURED = /^(velocity_change|angular_velocity_change)(\.|$)/;
+const CONTACT = /^contact(\.|$)/;
 
 export function parseCsv(text) {
   const lines = text.split(/\r?\n/).map((l) => l.trim()).filter((l) => l && !l.startsWith('#'));
@@ -48,7 +74,7 @@ export function parseCsv(text) {
 }
 
 export class FitPanel {
-  // app: {planarScene() -> request or null, form(), showImpactProblem()}
+  // app: {planarScene(), spatialScene() -> request or null, form(), showImpactProblem()}
   constructor(app) {
     this.app = app;
     $('fit-kind').addEventListener('change', () => this.renderKind(true));
@@ -80,7 +106,16 @@ export class FitPanel {
       fields.push(h('div', { class: 'field check' }, h('label', { class: 'inline', for: 'fit-normal' },
         h('input', { type: 'checkbox', id: 'fit-normal' }), ' also fit the normal\'s direction ', h('code', { text: 'fit_normal' }))));
     }
+    if ($('fit-kind').value === 'spatial') {
+      // The law is the scene's: shown here, where a refusal at `/law` is marked.
+      fields.push(h('div', { class: 'field' },
+        h('label', { for: 'fit-law' }, h('code', { text: 'law' }), ' (the Impact section\'s spatial law)'),
+        h('input', { id: 'fit-law', readonly: true, autocomplete: 'off', 'aria-describedby': 'fit-law-hint fit-law-error' }),
+        h('span', { class: 'hint', id: 'fit-law-hint' }),
+        h('span', { class: 'error', id: 'fit-law-error', hidden: true })));
+    }
     $('fit-fields').replaceChildren(...fields);
+    this.sceneChanged();
     $('fit-kind-hint').textContent = `POST ${kind.endpoint}`;
     $('fit-csv-hint').textContent = `Columns: ${kind.columns.join(', ')}. ${kind.hint}`;
     if (clear) {
@@ -89,6 +124,16 @@ export class FitPanel {
       $('fit-figure').hidden = true;
       $('fit-status').textContent = '';
     }
+  }
+
+  // The Impact section changed: the spatial fit's law follows its scene.
+  sceneChanged() {
+    const law = $('fit-law');
+    if (!law) return;
+    const scene = this.app.spatialScene() || {};
+    law.value = spatialLaw(scene);
+    const twist = scene.torsion ? `, and the twist law (torsion.pitch_radius ${scene.torsion.pitch_radius})` : '';
+    $('fit-law-hint').textContent = `Its coefficients are fitted${twist}.`;
   }
 
   // The request from the CSV and the shared fields; {request} or {problem}.
@@ -112,6 +157,7 @@ export class FitPanel {
       return item;
     });
     this.header = header;
+    if (kindName === 'spatial') return this.spatialRequest(header, rows);
     if (kindName === 'planar') {
       const scene = this.app.planarScene();
       const request = { bodies: scene.bodies, contact: scene.contact, measured: items };
@@ -119,6 +165,79 @@ export class FitPanel {
       return { request };
     }
     return { request: { observations: items } };
+  }
+
+  // The spatial fit's request: the rows grouped into impacts (by the
+  // `impact` column, or runs as long as the scene's bodies), each impact the
+  // scene with the row's own members set over it. Remembers which CSV row
+  // holds each measured change (`this.rowsOf[impact][body]`).
+  spatialRequest(header, rows) {
+    const scene = this.app.spatialScene();
+    if (!scene) return { problem: 'Choose the spatial case in the Impact section first.' };
+    this.sceneChanged();
+    const byImpact = header.indexOf('impact');
+    const groups = new Map();
+    rows.forEach((cells, r) => {
+      const key = byImpact >= 0 ? String(parseValue(cells[byImpact] ?? '') ?? '') : String(Math.floor(r / Math.max(scene.bodies?.length || 1, 1)));
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(r);
+    });
+    this.rowsOf = [...groups.values()];
+    const impacts = this.rowsOf.map((group) => {
+      const impact = { bodies: structuredClone(scene.bodies), contact: structuredClone(scene.contact), measured: [] };
+      group.forEach((r, k) => {
+        const measured = {};
+        header.forEach((name, i) => {
+          if (name === 'impact') return;
+          const v = parseValue(rows[r][i] ?? '');
+          if (v === undefined) return;
+          const pointer = '/' + name.replace(/\./g, '/');
+          if (MEASURED.test(name)) setIn(measured, pointer, v);
+          else if (CONTACT.test(name)) setIn(impact, pointer, v);
+          else if (Array.isArray(impact.bodies) && k < impact.bodies.length) setIn(impact.bodies[k], pointer, v);
+        });
+        impact.measured.push(measured);
+      });
+      return impact;
+    });
+    const request = { law: spatialLaw(scene), impacts };
+    if (scene.torsion) request.torsion = { pitch_radius: scene.torsion.pitch_radius };
+    return { request, rows: rows.length };
+  }
+
+  // A refusal of the spatial fit: a row's member on the CSV, the scene's on
+  // the Impact section, the law on its field.
+  showSpatialProblem(problem, detail) {
+    const pointer = problem.pointer || '';
+    const at = pointer.match(/^\/impacts\/(\d+)(?:\/(bodies|measured|contact)(?:\/(\d+))?)?(\/.*)?$/);
+    const rowsText = (rows) => (rows.length === 1 ? `Row ${rows[0] + 1}` : `Rows ${rows.map((r) => r + 1).join(', ')}`);
+    if (at) {
+      const impact = Number(at[1]);
+      const rows = this.rowsOf?.[impact] || [];
+      const [, , part, body, rest] = at;
+      const member = (rest || '').slice(1).replace(/\//g, '.');
+      const row = body !== undefined ? rows[Number(body)] : undefined;
+      // Whether the CSV has a column for the member (or within it).
+      const inCsv = (name) => this.header.some((c) => c === name || c.startsWith(`${name}.`) || name.startsWith(`${c}.`));
+      if (part === 'measured' && row !== undefined) {
+        showError($('fit-csv'), `${rowsText([row])}${member ? ` (${member})` : ''}: ${detail}`);
+      } else if (part === 'bodies' && row !== undefined && member && inCsv(member)) {
+        showError($('fit-csv'), `${rowsText([row])} (${member}): ${detail}`);
+      } else if (part === 'bodies' && body !== undefined) {
+        this.app.showImpactProblem({ ...problem, pointer: `/bodies/${body}${rest || ''}` });
+      } else if (part === 'contact' && !inCsv(member ? `contact.${member}` : 'contact')) {
+        this.app.showImpactProblem({ ...problem, pointer: `/contact${rest || ''}` });
+      } else {
+        const what = part ? `${part}${body !== undefined ? `[${body}]` : ''}${member ? `.${member}` : ''}` : '';
+        showError($('fit-csv'), `${rows.length ? rowsText(rows) : `Impact ${impact + 1}`}${what ? ` (${what})` : ''}: ${detail}`);
+      }
+    } else if (pointer === '/law' && $('fit-law')) {
+      showError($('fit-law'), detail);
+    } else if (/^\/(torsion|bodies|contact)(\/|$)/.test(pointer)) {
+      this.app.showImpactProblem(problem);
+    } else {
+      showError($('fit-csv'), detail);
+    }
   }
 
   clearErrors() {
@@ -130,6 +249,12 @@ export class FitPanel {
   showProblem(problem) {
     const pointer = problem.pointer || '';
     const detail = problem.detail || problem.title;
+    if ($('fit-kind').value === 'spatial') {
+      this.showSpatialProblem(problem, detail);
+      $('fit-problem').textContent = problemText(problem);
+      $('fit-problem').hidden = false;
+      return;
+    }
     const row = pointer.match(/^\/(observations|measured)\/(\d+)(\/.*)?$/);
     if (row) {
       const member = (row[3] || '').slice(1).replace(/\//g, '.');
@@ -165,8 +290,9 @@ export class FitPanel {
       this.showProblem(answer.problem);
       return;
     }
-    this.table(answer.body);
-    $('fit-status').textContent = `Fitted ${(built.request.observations || built.request.measured).length} rows.`;
+    if (kindName === 'spatial') this.spatialTable(answer.body);
+    else this.table(answer.body);
+    $('fit-status').textContent = `Fitted ${built.rows ?? (built.request.observations || built.request.measured).length} rows.`;
     await this.draw(kindName, built.request, answer.body);
   }
 
@@ -200,12 +326,38 @@ export class FitPanel {
     $('fit-table').hidden = false;
   }
 
+  // The spatial fit: each coefficient labelled from the quantity table by its
+  // request member, χ² and its degrees of freedom, each impact's regime and
+  // residuals; a member the table does not name by its API name.
+  spatialTable(fit) {
+    const rows = [];
+    const row = (pointer, value, se = '', member = apiName(pointer), list = false) => {
+      const label = outputLabel(pointer);
+      rows.push(h('tr', { 'data-member': member },
+        h('th', { scope: 'row' }, label.sym ? h('span', { class: 'sym', html: label.sym }) : '', label.sym ? ' ' : '', h('span', { class: 'words', html: label.text })),
+        h('td', {}, h('code', { text: member })),
+        h('td', { class: list ? 'num list' : 'num', 'data-value': String(value) }, display(value), label.unit ? h('span', { class: 'unit', text: ` ${label.unit}` }) : ''),
+        h('td', { class: 'num', 'data-value': String(se ?? '') }, se === null ? '—' : display(se))));
+    };
+    for (const c of fit.coefficients) row(c.member, c.value, c.standard_error);
+    row('/chi_squared', fit.chi_squared);
+    row('/degrees_of_freedom', fit.degrees_of_freedom);
+    if (fit.degrees_of_freedom > 0) row('/chi_squared/degrees_of_freedom', fit.chi_squared / fit.degrees_of_freedom, '', 'chi_squared / degrees_of_freedom');
+    fit.impacts.forEach((impact, i) => {
+      row(`/impacts/${i}/regime`, impact.regime);
+      if (impact.torsional_regime) row(`/impacts/${i}/torsional_regime`, impact.torsional_regime);
+      row(`/impacts/${i}/residuals`, impact.residuals.map((x) => display(+x.toPrecision(3))).join(', '), '', undefined, true);
+    });
+    $('fit-table').querySelector('tbody').replaceChildren(...rows);
+    $('fit-table').hidden = false;
+  }
+
   // The fitted model over the points, in the paper's normalised axes
   // (velocities over the approach speed, for the first row's body: the
   // model is homogeneous in the velocities).
   async draw(kindName, request, fit) {
     const figure = $('fit-figure');
-    if (kindName === 'planar') { figure.hidden = true; return; }
+    if (kindName === 'planar' || kindName === 'spatial') { figure.hidden = true; return; }
     const obs = request.observations;
     const o0 = obs[0];
     let points;
@@ -267,7 +419,8 @@ export class FitPanel {
 
   // Synthetic measurements from the service itself: the Maw disc (tangential),
   // Figure 4's ball (torsional), the planar scene's own outcome (planar),
-  // with a small deterministic wiggle.
+  // with a small deterministic wiggle; the spatial scene's own outcome
+  // (spatial), exact to 8 digits.
   async sample() {
     const kindName = $('fit-kind').value;
     this.clearErrors();
@@ -300,6 +453,19 @@ export class FitPanel {
       if (!answer.ok) { this.showProblem(answer.problem); return; }
       const lines = answer.body.rows.map((r, i) => [-3, r[0], r[1], r[2] + 0.1 * Math.cos(i)].map((x) => +x.toPrecision(8)).join(','));
       csv = [KINDS.torsional.columns.join(','), ...lines].join('\n');
+    } else if (kindName === 'spatial') {
+      const scene = this.app.spatialScene();
+      const answer = await post('/v1/impacts/spatial', scene);
+      if (!answer.ok) {
+        // The scene itself is refused: its field is the Impact section's.
+        $('fit-status').textContent = 'The service refused the scene.';
+        this.app.showImpactProblem(answer.problem);
+        $('fit-problem').textContent = problemText(answer.problem);
+        $('fit-problem').hidden = false;
+        return;
+      }
+      csv = spatialCsv(scene, answer.body);
+      this.sceneChanged();
     } else {
       const scene = this.app.planarScene();
       const answer = await post('/v1/impacts/planar', scene);
@@ -311,4 +477,23 @@ export class FitPanel {
     $('fit-csv').value = csv;
     $('fit-status').textContent = 'Sample data ready: press Fit.';
   }
+}
+
+const display = (v) => (v === null || v === undefined ? '—' : String(v).replace(/^-/, '−'));
+
+// The spatial scene's outcome as measured rows: one per body, impact 0, its
+// ΔV and Δω to 8 digits; the uncertainties 1 % of the largest |ΔV| component,
+// and that over body A's lever |C − G| for Δω.
+export function spatialCsv(scene, outcome) {
+  const round = (x) => +x.toPrecision(8);
+  const dv = Math.max(...outcome.bodies.flatMap((b) => XYZ.map((c) => Math.abs(b.velocity_change[c]))));
+  const sv = round(0.01 * dv || 1e-3);
+  const g = scene.bodies[0].position || {};
+  const p = scene.contact.point || {};
+  const lever = Math.hypot(...XYZ.map((c) => (p[c] ?? 0) - (g[c] ?? 0)));
+  const sw = round(lever > 0 ? sv / lever : sv);
+  const lines = outcome.bodies.map((b) => [0,
+    ...XYZ.flatMap((c) => [round(b.velocity_change[c]), sv]),
+    ...XYZ.flatMap((c) => [round(b.angular_velocity_change[c]), sw])].join(','));
+  return [KINDS.spatial.columns.join(','), ...lines].join('\n');
 }
