@@ -9,13 +9,21 @@
 //! board level, the cube a dynamic cuboid of half-extent `h` with the mass
 //! `m` and the inertia `I₀ 1` set explicitly, started touching the board at
 //! the measured pre-impact state at the impact instant; it is stepped until
-//! it separates and its velocities are referred back to the impact instant
+//! it separates or until the instant the measured post-impact velocities
+//! refer to, and its velocities are referred back to the impact instant
 //! (gravity over the stepped time removed). Restitution and friction are
 //! fitted "the same way" as the point model (`tosses::minimise`, the same
 //! objective, box and budget as the Coulomb law) on each training fold's
-//! single-corner impacts and predict the held-out fold.
+//! single-corner impacts and predict the held-out fold. Then: the engine's
+//! contacts (corners loaded, steps, span), the engine against the laws at
+//! equal coefficients, the direction of the tangential impulse, and the
+//! sensitivity to the step, the horizon and the friction model.
 //!
 //! `cargo run --release --manifest-path benches/rapier-tosses/Cargo.toml`
+//!
+//! With `RAPIER_TOSSES_DEBUG` set it prints instead the engine's and the
+//! laws' outcomes for a few single-corner impacts at chosen coefficients
+//! (frictionless, sticking, fitted).
 
 use rapier3d::glamx::{Mat3, Quat, Vec3};
 use rapier3d::prelude::*;
@@ -574,7 +582,7 @@ fn main() {
             .to_degrees()
     };
     let ratio = |p: [f64; 3]| (p[0] * p[0] + p[1] * p[1]).sqrt() / p[2];
-    let mut angles: [Vec<f64>; 4] = Default::default();
+    let mut angles: [Vec<f64>; 5] = Default::default();
     let mut ratios: [Vec<f64>; 4] = Default::default();
     for (i, r) in &fitted_runs[0] {
         let b = &distinct[*i];
@@ -596,12 +604,14 @@ fn main() {
             angles[j].push(angle(p, if j == 0 { slip } else { measured }));
             ratios[j].push(ratio(p));
         }
+        angles[4].push(angle(r.impulse, slip));
     }
     println!(
         "Tangential impulse, single-corner impacts held out ({}): median angle (degrees) of the measured one from \
          the initial slip's opposite {:.1}; from the measured one: the Coulomb law's (fitted) {:.1}, the engine's \
          (fitted) {:.1}, the engine's at the point model's Coulomb e f {:.1}. Median |P_t|/P_n: measured {:.3}, \
-         Coulomb law {:.3}, engine fitted {:.3}, engine at the Coulomb e f {:.3}.\n",
+         Coulomb law {:.3}, engine fitted {:.3}, engine at the Coulomb e f {:.3}. The engine's (fitted) from the \
+         initial slip's opposite: {:.1}.\n",
         fitted_runs[0].len(),
         median(angles[0].clone()),
         median(angles[1].clone()),
@@ -610,7 +620,8 @@ fn main() {
         median(ratios[0].clone()),
         median(ratios[1].clone()),
         median(ratios[2].clone()),
-        median(ratios[3].clone())
+        median(ratios[3].clone()),
+        median(angles[4].clone())
     );
 
     // Edges: the engine's angular velocity error about the edge, across it
