@@ -4,13 +4,20 @@
 //! impacts with its uncertainty, and the balance's residuals against the
 //! data's noise; then the prediction of held-out tosses (two folds by toss)
 //! with each contact model, and where the point model stops following
-//! (edge and face impacts). The method and these numbers are in
-//! `docs/tosses.md`.
+//! (edge and face impacts); the coefficients with their standard errors
+//! from the library's spatial fit. The method and these numbers are in
+//! `docs/tosses.md`. It also draws the figures of `docs/validation.md`'s
+//! "Real cube tosses" (`docs/validation/contactnets_tosses_*.svg`; the same
+//! bytes on every run).
 //!
 //! `cargo run --example cube_tosses`
 
+use restitution::plot::{Color, Curve, Dash, Figure, LegendEntry, Line, Marker, Markers, Scale, Shape};
 use restitution_testkit::tosses::{self, Bounce, Class, Detection, Model, Skip};
 use std::collections::BTreeMap;
+
+/// Where the figures go.
+const PLOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/validation");
 
 /// `I₀` (kg m²) as `I/(m h²)`.
 fn mh2(inertia: f64) -> f64 {
@@ -306,7 +313,7 @@ fn coefficients(model: Model, p: &[f64]) -> String {
         .join(", ")
 }
 
-/// The two-fold prediction of held-out tosses (issue 34, item 3).
+/// The two-fold prediction of held-out tosses.
 fn prediction(distinct: &[Bounce]) {
     const SEED: u64 = 34;
     let folds = tosses::fold_of_tosses(distinct, SEED);
@@ -504,6 +511,293 @@ fn prediction(distinct: &[Bounce]) {
             error_cells(&s)
         );
     }
+    standard_errors(&corners, inertia);
+    figures(distinct, &folds, &results);
+}
+
+/// The Coulomb and two-phase laws fitted on every single-corner impact
+/// through `restitution::fit::spatial`, with their standard errors.
+fn standard_errors(corners: &[&Bounce], inertia: f64) {
+    println!(
+        "\n### Standard errors: restitution::fit::spatial on all {} single-corner impacts (I0 {:.4} m h²)\n",
+        corners.len(),
+        mh2(inertia)
+    );
+    println!(
+        "Weighted least squares of the measured ΔV and Δω (σ(Δω) = σ(ΔV)/(√3 h)); standard errors from the \
+         covariance at σ(ΔV) scaled so that χ² equals its degrees of freedom (the residuals' scatter), \
+         each impact's six components taken as independent.\n"
+    );
+    println!(
+        "| model | coefficients ± standard error | σ(ΔV) m/s | G m/s (rel) | contact m/s (rel) | ω rad/s (rel) | G+contact m/s (rel) | refused |\n\
+         |---|---|---|---|---|---|---|---|"
+    );
+    for model in [Model::Coulomb, Model::TwoPhase, Model::CoulombApproach] {
+        let fit = tosses::fit_spatial(corners, inertia, model)
+            .unwrap_or_else(|why| panic!("{}: {why}", model.name()));
+        let cells: Vec<String> = fit
+            .estimates
+            .iter()
+            .map(|(name, value, se)| format!("{name} {value:.4} ± {se:.4}"))
+            .collect();
+        let s = tosses::score(corners, inertia, model, &fit.values());
+        println!(
+            "| {} | {} | {:.3} | {} |",
+            model.name(),
+            cells.join(", "),
+            fit.sigma_v,
+            error_cells(&s)
+        );
+    }
+    println!();
+}
+
+/// `a − b`.
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| a[i] - b[i])
+}
+
+/// A model's name in a figure (the plot's markup: `_x` a subscript).
+fn plot_name(model: Model) -> &'static str {
+    match model {
+        Model::NoImpact => "no impact",
+        Model::Frictionless => "frictionless, e fitted",
+        Model::Authors => "Coulomb, authors' e 0.125, f 0.18",
+        Model::Coulomb => "Coulomb, e, f fitted",
+        Model::Bilinear => "bilinear, e, f, e_t fitted",
+        Model::Twist => "Coulomb + twist, e, f, e_z, μ_z fitted",
+        Model::TwoPhase => "two-phase, R, μ_A, μ_R fitted",
+        Model::CoulombApproach => "two-phase, Coulomb approach, R, f_A, μ_R fitted",
+    }
+}
+
+/// Each single-corner impact of `distinct` with its held-out prediction by
+/// `h` (a refusal predicted as no impact, as in the tables).
+fn held_out_predictions<'a>(
+    distinct: &'a [Bounce],
+    folds: &BTreeMap<usize, usize>,
+    h: &tosses::HeldOut,
+) -> Vec<(&'a Bounce, tosses::State)> {
+    distinct
+        .iter()
+        .filter(|b| b.class == Class::Corner)
+        .map(|b| {
+            let k = folds[&b.toss];
+            let p = tosses::predict(b, h.inertia[k], h.model, &h.coefficients[k]).unwrap_or(b.pre);
+            (b, p)
+        })
+        .collect()
+}
+
+/// The figures: predicted against measured post-impact contact-point
+/// velocity (x, y, z) for the best fitted law held out and the authors'
+/// coefficients, and the distribution of the per-impact error of every
+/// model, held out. Written to `docs/validation/contactnets_tosses_*.svg`.
+fn figures(distinct: &[Bounce], folds: &BTreeMap<usize, usize>, results: &[tosses::HeldOut]) {
+    let of = |m: Model| results.iter().find(|h| h.model == m).expect("every model");
+    let fitted = [
+        Model::Frictionless,
+        Model::Coulomb,
+        Model::Bilinear,
+        Model::Twist,
+        Model::TwoPhase,
+        Model::CoulombApproach,
+    ];
+    let best = fitted
+        .into_iter()
+        .min_by(|a, b| of(*a).corner.relative()[3].total_cmp(&of(*b).corner.relative()[3]))
+        .expect("fitted models");
+    let n = of(best).corner.n;
+    println!("## Figures (docs/validation/)\n");
+    println!(
+        "Best fitted law held out (G+contact, single-corner impacts): {} ({:.3} m/s).\n",
+        best.name(),
+        of(best).corner.rms_gc()
+    );
+    // The normal law's reach: the measured ratio of the contact point's
+    // normal velocities after and before, per single-corner impact.
+    let ratios: Vec<(f64, f64)> = distinct
+        .iter()
+        .filter(|b| b.class == Class::Corner)
+        .map(|b| {
+            (
+                b.normal_velocity_pre(),
+                -b.normal_velocity_post() / b.normal_velocity_pre(),
+            )
+        })
+        .collect();
+    let slow = ratios.iter().filter(|(v, _)| *v > -0.1).count();
+    let above_one = ratios.iter().filter(|(_, r)| *r > 1.0).count();
+    println!(
+        "Measured −V_Cz/v_Cz (single-corner impacts): above 1 in {above_one} of {}; {slow} approach slower than \
+         0.1 m/s at the inferred impact instant.\n",
+        ratios.len()
+    );
+    std::fs::create_dir_all(PLOTS).expect("docs/validation");
+    let write = |name: &str, svg: String| {
+        std::fs::write(format!("{PLOTS}/{name}"), svg).expect("a figure");
+        println!("- {name}");
+    };
+    // Predicted against measured contact-point velocity, per component.
+    let sets = [
+        (best, Marker::hollow(Shape::Circle, Color(0, 114, 178))),
+        (Model::Authors, Marker::hollow(Shape::Triangle, Color(213, 94, 0))),
+    ];
+    let predictions: Vec<Vec<([f64; 3], [f64; 3])>> = sets
+        .iter()
+        .map(|(m, _)| {
+            held_out_predictions(distinct, folds, of(*m))
+                .into_iter()
+                .map(|(b, p)| {
+                    (
+                        tosses::contact_point_velocity(&b.post, b.r),
+                        tosses::contact_point_velocity(&p, b.r),
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        let all = predictions.iter().flatten().flat_map(|(m, p)| [m[i], p[i]]);
+        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        let diagonal = Curve {
+            label: "predicted = measured".into(),
+            segments: vec![vec![(lo, lo), (hi, hi)]],
+            line: Some(Line {
+                color: Color(77, 77, 77),
+                width: 1.2,
+                dash: Dash::Dashed,
+            }),
+        };
+        let markers: Vec<Markers> = sets
+            .iter()
+            .zip(&predictions)
+            .map(|((m, marker), points)| {
+                let rms = (points.iter().map(|(a, b)| (b[i] - a[i]).powi(2)).sum::<f64>()
+                    / points.len() as f64)
+                    .sqrt();
+                Markers {
+                    label: format!("{}: RMS error {rms:.3} m/s", plot_name(*m)),
+                    points: points.iter().map(|(a, b)| (a[i], b[i])).collect(),
+                    marker: Some(*marker),
+                }
+            })
+            .collect();
+        let mut legend = vec![LegendEntry::Heading("Held out".into())];
+        legend.extend(
+            markers
+                .iter()
+                .map(|m| LegendEntry::Marker(m.marker.expect("a marker"), m.label.clone())),
+        );
+        legend.push(LegendEntry::Line(
+            diagonal.line.expect("a line"),
+            diagonal.label.clone(),
+        ));
+        let svg = Figure {
+            title: format!("Contact-point velocity after impact, {axis}"),
+            subtitle: format!(
+                "ContactNets cube tosses, {n} single-corner impacts, each predicted from the other fold's fit"
+            ),
+            x_name: format!("measured V_{{C,{axis}}} (m/s)"),
+            y_name: format!("predicted V_{{C,{axis}}} (m/s)"),
+            curves: vec![diagonal],
+            markers,
+            legend: Some(legend),
+            size: Some((900.0, 620.0)),
+            ..Figure::default()
+        }
+        .render();
+        write(&format!("contactnets_tosses_contact_velocity_{axis}.svg"), svg);
+    }
+    // The distribution of the per-impact error, every model.
+    let mut models = vec![
+        Model::NoImpact,
+        Model::Frictionless,
+        Model::Authors,
+        Model::Coulomb,
+        Model::TwoPhase,
+        Model::CoulombApproach,
+    ];
+    if !models.contains(&best) {
+        models.push(best);
+    }
+    let styles = [
+        Line {
+            color: Color(77, 77, 77),
+            width: 2.0,
+            dash: Dash::Dashed,
+        },
+        Line {
+            color: Color(140, 81, 10),
+            width: 2.0,
+            dash: Dash::Dotted,
+        },
+        Line {
+            color: Color(213, 94, 0),
+            width: 2.0,
+            dash: Dash::DashDot,
+        },
+        Line::solid(Color(0, 114, 178)),
+        Line::solid(Color(17, 119, 51)),
+        Line {
+            color: Color(170, 51, 119),
+            width: 2.0,
+            dash: Dash::Dashed,
+        },
+        Line {
+            color: Color(51, 34, 136),
+            width: 2.0,
+            dash: Dash::Dotted,
+        },
+    ];
+    let curves: Vec<Curve> = models
+        .iter()
+        .zip(styles)
+        .map(|(&m, line)| {
+            let mut errors: Vec<f64> = held_out_predictions(distinct, folds, of(m))
+                .into_iter()
+                .map(|(b, p)| {
+                    let g = sub(p.velocity, b.post.velocity);
+                    let c = sub(
+                        tosses::contact_point_velocity(&p, b.r),
+                        tosses::contact_point_velocity(&b.post, b.r),
+                    );
+                    (tosses::dot(g, g) + tosses::dot(c, c)).sqrt()
+                })
+                .collect();
+            errors.sort_by(f64::total_cmp);
+            let count = errors.len() as f64;
+            let median = errors[errors.len() / 2];
+            // The empirical distribution function as a staircase.
+            let mut steps = Vec::with_capacity(2 * errors.len());
+            for (k, e) in errors.iter().enumerate() {
+                steps.push((*e, k as f64 / count));
+                steps.push((*e, (k + 1) as f64 / count));
+            }
+            Curve {
+                label: format!("{}: median {median:.3} m/s", plot_name(m)),
+                segments: vec![steps],
+                line: Some(line),
+            }
+        })
+        .collect();
+    let svg = Figure {
+        title: "Per-impact error of the post-impact velocities, held out".into(),
+        subtitle: format!(
+            "ContactNets cube tosses, {n} single-corner impacts: fraction predicted within a given error"
+        ),
+        x_name: "error of G and contact point, √(|e_G|² + |e_C|²) (m/s)".into(),
+        y_name: "fraction of impacts".into(),
+        x_scale: Scale::Log,
+        curves,
+        size: Some((900.0, 620.0)),
+        ..Figure::default()
+    }
+    .render();
+    write("contactnets_tosses_error_distribution.svg", svg);
+    println!();
 }
 
 /// A score's cells: the RMS errors of G, the contact point, ω and G with the

@@ -1464,6 +1464,97 @@ pub fn fit_two_phase(train: &[&Bounce], inertia: f64, model: Model) -> Result<Ve
     Ok(fit.estimates.iter().map(|(_, e)| e.value).collect())
 }
 
+/// A law fitted through `restitution::fit::spatial`, with standard errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialEstimates {
+    /// The model fitted.
+    pub model: Model,
+    /// Each coefficient (named as in [`Model::parameters`]): value and
+    /// standard error.
+    pub estimates: Vec<(&'static str, f64, f64)>,
+    /// Impacts fitted.
+    pub n: usize,
+    /// `χ²` at [`SIGMA_V`], [`SIGMA_W`], and its degrees of freedom.
+    pub chi_squared: f64,
+    pub degrees_of_freedom: usize,
+    /// The uncertainty of a component of `ΔV` (m/s) at which `χ²` equals its
+    /// degrees of freedom, `SIGMA_V · sqrt(χ²/dof)` (that of `Δω` in the
+    /// same ratio): the residuals' own scatter.
+    pub sigma_v: f64,
+}
+
+impl SpatialEstimates {
+    /// The coefficients' values, in [`Model::parameters`] order.
+    pub fn values(&self) -> Vec<f64> {
+        self.estimates.iter().map(|e| e.1).collect()
+    }
+
+    /// The standard errors, in the same order.
+    pub fn standard_errors(&self) -> Vec<f64> {
+        self.estimates.iter().map(|e| e.2).collect()
+    }
+}
+
+/// Fits `model` (Coulomb, bilinear or a two-phase law) to `bounces` at
+/// `inertia` through `restitution::fit::spatial`, as [`fit_two_phase`] does
+/// (weighted least squares of the measured `ΔV` and `Δω`, [`SIGMA_V`],
+/// [`SIGMA_W`], Levenberg–Marquardt), with the standard errors: the fit's
+/// covariance `(Jᵀ J)⁻¹` at uncertainties scaled so that `χ²` equals its
+/// degrees of freedom (the library's errors × `sqrt(χ²/dof)`; the
+/// coefficients do not depend on that scale). The six components of an
+/// impact are taken as independent.
+pub fn fit_spatial(bounces: &[&Bounce], inertia: f64, model: Model) -> Result<SpatialEstimates, String> {
+    use restitution::fit::{Measured, SpatialChange, SpatialLaw, SpatialObservation};
+    let law = match model {
+        Model::Coulomb => SpatialLaw::Friction,
+        Model::Bilinear => SpatialLaw::TangentialRestitution,
+        Model::TwoPhase => SpatialLaw::KineticRestitution,
+        Model::CoulombApproach => SpatialLaw::KineticFriction,
+        _ => return Err(format!("{} is not fitted through the spatial fit", model.name())),
+    };
+    let measured = |a: [f64; 3], b: [f64; 3], sigma: f64| {
+        [0, 1, 2].map(|i| Measured {
+            value: b[i] - a[i],
+            uncertainty: sigma,
+        })
+    };
+    let observations: Vec<SpatialObservation> = bounces
+        .iter()
+        .map(|b| {
+            let impact = spatial_impact(
+                b,
+                inertia,
+                restitution::Law::Frictionless { restitution: 0.0 },
+                None,
+            );
+            SpatialObservation {
+                a: impact.a,
+                b: None,
+                contact: impact.contact,
+                measured: vec![SpatialChange {
+                    velocity_change: measured(b.pre.velocity, b.post.velocity, SIGMA_V),
+                    angular_velocity_change: Some(measured(b.pre.omega, b.post.omega, SIGMA_W)),
+                }],
+            }
+        })
+        .collect();
+    let fit = restitution::fit::spatial(&observations, law, None).map_err(|e| e.to_string())?;
+    let scale = (fit.chi_squared / fit.degrees_of_freedom.max(1) as f64).sqrt();
+    Ok(SpatialEstimates {
+        model,
+        estimates: model
+            .parameters()
+            .iter()
+            .zip(&fit.estimates)
+            .map(|(&name, (_, e))| (name, e.value, e.standard_error * scale))
+            .collect(),
+        n: bounces.len(),
+        chi_squared: fit.chi_squared,
+        degrees_of_freedom: fit.degrees_of_freedom,
+        sigma_v: SIGMA_V * scale,
+    })
+}
+
 /// Two folds of the tosses, each physical toss in one: the distinct toss
 /// numbers among `bounces`, shuffled with `seed` (Fisher–Yates) and halved.
 /// Returns each toss's fold (0 or 1).

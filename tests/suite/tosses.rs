@@ -417,6 +417,50 @@ fn coulomb_fit_on_all_single_corner_impacts_is_pinned() {
     }
 }
 
+/// Coulomb's `e` and `f` fitted on every single-corner impact through the
+/// library's spatial fit (`restitution::fit::spatial`, the fit behind
+/// `POST /v1/fits/spatial`: weighted least squares of the measured `ΔV` and
+/// `Δω`), with standard errors from its covariance at the residuals' scatter
+/// (`tosses::fit_spatial`): pinned to the committed values of
+/// `docs/tosses.md` within two standard errors, the standard errors
+/// themselves within a factor 1.5. The check has teeth: a value five
+/// standard errors off, the authors' coefficients, and the other fit's `e`
+/// (least squares of the post-impact velocities instead) all fail it.
+#[test]
+fn coulomb_spatial_fit_is_pinned_within_its_standard_errors() {
+    /// Committed `(value, standard error)`.
+    const E: (f64, f64) = (0.2623, 0.0060);
+    const F: (f64, f64) = (0.1722, 0.0021);
+    let d = data();
+    let corners = corner_impacts(d);
+    let fit = tosses::fit_spatial(&corners, d.fit.inertia, Model::Coulomb).expect("a Coulomb fit");
+    let ([e, f], [se_e, se_f]) = (
+        <[f64; 2]>::try_from(fit.values()).expect("e, f"),
+        <[f64; 2]>::try_from(fit.standard_errors()).expect("two errors"),
+    );
+    println!(
+        "e {e:.5} ± {se_e:.5}, f {f:.5} ± {se_f:.5}; χ² {:.4} over {} degrees of freedom, σ(ΔV) {:.4} m/s",
+        fit.chi_squared, fit.degrees_of_freedom, fit.sigma_v
+    );
+    assert_eq!(fit.n, corners.len());
+    assert_eq!(fit.degrees_of_freedom, 6 * corners.len() - 2);
+    // Within two standard errors of a committed value; a standard error within a factor 1.5.
+    let pinned = |value: f64, committed: (f64, f64), se: f64| (value - committed.0).abs() <= 2.0 * se;
+    let loosely = |se: f64, committed: (f64, f64)| se > committed.1 / 1.5 && se < committed.1 * 1.5;
+    assert!(loosely(se_e, E), "se(e) = {se_e}, committed {}", E.1);
+    assert!(loosely(se_f, F), "se(f) = {se_f}, committed {}", F.1);
+    assert!(pinned(e, E, se_e), "e = {e} ± {se_e}, committed {}", E.0);
+    assert!(pinned(f, F, se_f), "f = {f} ± {se_f}, committed {}", F.0);
+    // Teeth.
+    for wrong in [E.0 + 5.0 * E.1, E.0 - 5.0 * E.1, tosses::AUTHORS[0], 0.277] {
+        assert!(!pinned(e, (wrong, E.1), se_e), "e passes at {wrong}");
+    }
+    for wrong in [F.0 + 5.0 * F.1, F.0 - 5.0 * F.1, tosses::AUTHORS[1]] {
+        assert!(!pinned(f, (wrong, F.1), se_f), "f passes at {wrong}");
+    }
+    assert!(!loosely(2.0 * E.1, E) && !loosely(E.1 / 2.0, E));
+}
+
 /// Held-out tosses (two folds by toss, fitted on one, predicted on the
 /// other, both ways): the fitted Coulomb law predicts the post-impact
 /// velocities of G and of the contact point far better than no impact
