@@ -164,7 +164,7 @@ impl Field for Compensated {
     }
 }
 
-impl<const RUNNING: bool> Field for Filtered<RUNNING> {
+impl<const RUNNING: bool, const STATIC: bool> Field for Filtered<RUNNING, STATIC> {
     type Undecided = Uncertain;
     #[inline(always)]
     fn of(x: f64) -> Self {

@@ -7,7 +7,7 @@
 //!   too close to call, or a value leaves the f64 range);
 //! - `f64`: the same doubles without the bound, deciding as f64 does (tests
 //!   of the f64 forms over wide magnitudes, and fits);
-//! - [`Compensated`] (`compensated.rs`): the plain f64 evaluation and its
+//! - [`Compensated`] (`compensated/`): the plain f64 evaluation and its
 //!   rounding errors, gathered by error-free transformations, with a static
 //!   error bound (answers every typical input in `exact` precision);
 //! - [`Bounded`] (`bounded.rs`) double-doubles with a bound tracked operation by

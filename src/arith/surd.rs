@@ -260,7 +260,7 @@ impl Radical for f64 {
     }
 }
 
-impl<const RUNNING: bool> Radical for super::Filtered<RUNNING> {
+impl<const RUNNING: bool, const STATIC: bool> Radical for super::Filtered<RUNNING, STATIC> {
     #[inline(always)]
     fn sqrt(&self) -> Result<Self, super::Uncertain> {
         super::Filtered::sqrt(self)
@@ -268,8 +268,9 @@ impl<const RUNNING: bool> Radical for super::Filtered<RUNNING> {
 }
 
 impl Radical for super::Compensated {
+    #[inline(always)]
     fn sqrt(&self) -> Result<Self, super::Unsettled> {
-        Err(super::Unsettled::Root)
+        super::Compensated::sqrt(self)
     }
 }
 

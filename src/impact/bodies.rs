@@ -3,7 +3,7 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
-use super::{Arithmetic, Case, FastBounds, Model, Stage, evaluate_contact};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
@@ -222,7 +222,7 @@ impl Case for BodiesImpact {
                     in_range,
                     certain,
                     || self.error_scales(),
-                    FastBounds::StaticFirst,
+                    StaticBounds::Tight,
                     Pair {
                         impact: &impact,
                         outputs,

@@ -338,7 +338,7 @@ pub(crate) fn evaluate<T>(
     arithmetic: Arithmetic,
     in_range: bool,
     scales: impl FnOnce() -> ErrorScales,
-    bounds: FastBounds,
+    bounds: StaticBounds,
     model: impl Model<T>,
     out: &mut T,
 ) -> (Result<()>, Stage) {
@@ -346,8 +346,8 @@ pub(crate) fn evaluate<T>(
         Arithmetic::Fast if in_range => fast_or_exact(&model, scales(), bounds, out),
         Arithmetic::Plain => fast_or_exact(&model, scales(), bounds, out),
         Arithmetic::Unpromised if in_range => fast_or_exact(&model, ErrorScales::UNPROMISED, bounds, out),
-        Arithmetic::Unfiltered => unfiltered_or_exact(&model, out),
-        Arithmetic::Fast | Arithmetic::Unpromised | Arithmetic::Exact => adaptive(&model, out),
+        Arithmetic::Unfiltered => unfiltered_or_exact(&model, bounds, out),
+        Arithmetic::Fast | Arithmetic::Unpromised | Arithmetic::Exact => adaptive(&model, bounds, out),
         Arithmetic::Rational => rational(&model, out),
     }
 }
@@ -362,7 +362,7 @@ pub(crate) fn evaluate_contact<T>(
     in_range: bool,
     certain: bool,
     scales: impl FnOnce() -> ErrorScales,
-    bounds: FastBounds,
+    bounds: StaticBounds,
     model: impl Model<T>,
     out: &mut T,
 ) -> (Result<()>, Stage) {
@@ -373,20 +373,29 @@ pub(crate) fn evaluate_contact<T>(
     evaluate(arithmetic, in_range && certain, scales, bounds, model, out)
 }
 
-/// Which error bounds the `fast` evaluation carries before the exact stages
-/// (`crate::arith::Filtered`). Either way every decision is exact and every
-/// output within the promise; the choice is only what it costs.
+/// How tight the static error bounds (`λ u M` of `fast`'s
+/// `crate::arith::Filtered`, `λ² u² M` of the compensated stage) are for a
+/// model: it orders the bounds each precision tries. Either way every
+/// decision is exact and every output within the promise; the choice is
+/// only what it costs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum FastBounds {
-    /// The static bound alone, then both where it leaves a decision or an
-    /// output undecided: for a short computation (one or two laminae), where
-    /// the static bound decides nearly everything and the running bound's
-    /// bookkeeping would cost 25–70 % more on every answer.
-    StaticFirst,
-    /// Both at once: for a long chain of products and quotients (the
-    /// contact in space), where the static bound alone leaves most outputs
-    /// inaccurate and a first pass would be wasted.
-    Both,
+pub(crate) enum StaticBounds {
+    /// A short computation (one or two laminae): `fast` runs the static
+    /// bound alone, then both where it leaves a decision or an output
+    /// undecided (the running bound's bookkeeping would cost 25–70 % more on
+    /// every answer); in `exact`, a value the compensated stage finds within
+    /// its bound of a tie is taken to be near one and goes to the
+    /// double-double stage that keeps exact operations exact.
+    Tight,
+    /// A long chain of products and quotients (the contact in space, through
+    /// two 3×3 inverses), where `M` multiplies the conditioning of every
+    /// factor: `fast` runs the running bound alone, then both where it leaves
+    /// something undecided (the static one alone leaves most outputs
+    /// inaccurate, and its magnitudes cost 20–40 % more on every answer); in
+    /// `exact`, a value the compensated stage could not decide goes to plain
+    /// double-double first, whose bound is tracked, and to the one that keeps
+    /// exact operations exact only if that fails too.
+    Loose,
 }
 
 /// The model in exact fractions alone.
@@ -413,33 +422,35 @@ fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
 fn fast_or_exact<T>(
     model: &impl Model<T>,
     scales: ErrorScales,
-    bounds: FastBounds,
+    bounds: StaticBounds,
     out: &mut T,
 ) -> (Result<()>, Stage) {
     // The only place the f64 evaluation runs: its outputs are measured
     // against this impact's scales, whoever called.
     crate::arith::measure_against(&scales);
-    if bounds == FastBounds::StaticFirst {
-        match run_fast::<false, T>(model, out) {
-            Ok(()) => return (Ok(()), Stage::Fast),
-            // The running bound may still decide it.
-            Err(Fail::Undecided(Uncertain::Close | Uncertain::Inaccurate)) => {}
-            Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => return adaptive(model, out),
-        }
+    let first = match bounds {
+        StaticBounds::Tight => run_fast::<false, true, T>(model, out),
+        StaticBounds::Loose => run_fast::<true, false, T>(model, out),
+    };
+    match first {
+        Ok(()) => return (Ok(()), Stage::Fast),
+        // Both bounds together may still decide it.
+        Err(Fail::Undecided(Uncertain::Close | Uncertain::Inaccurate)) => {}
+        Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => return adaptive(model, bounds, out),
     }
-    match run_fast::<true, T>(model, out) {
+    match run_fast::<true, true, T>(model, out) {
         Ok(()) => (Ok(()), Stage::Fast),
         Err(Fail::Undecided(Uncertain::Close)) => {
             FAST_ESCALATED[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            adaptive(model, out)
+            adaptive(model, bounds, out)
         }
         Err(Fail::Undecided(Uncertain::Inaccurate)) => {
             FAST_ESCALATED[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            adaptive(model, out)
+            adaptive(model, bounds, out)
         }
         // A refusal of the model is rare and final: the exact stages confirm
         // it and give its payload exactly.
-        Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => adaptive(model, out),
+        Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => adaptive(model, bounds, out),
     }
 }
 
@@ -453,20 +464,23 @@ fn fast_or_exact<T>(
 /// thread.
 #[cfg_attr(debug_assertions, inline(never))]
 #[cfg_attr(not(debug_assertions), inline(always))]
-fn run_fast<const RUNNING: bool, T>(model: &impl Model<T>, out: &mut T) -> Exact<Filtered<RUNNING>, ()> {
+fn run_fast<const RUNNING: bool, const STATIC: bool, T>(
+    model: &impl Model<T>,
+    out: &mut T,
+) -> Exact<Filtered<RUNNING, STATIC>, ()> {
     crate::kernels::run(
         #[inline(always)]
-        || model.run::<Filtered<RUNNING>>(out),
+        || model.run::<Filtered<RUNNING, STATIC>>(out),
     )
 }
 
 /// The f64 answer with the decisions f64 takes (no error bound), or the exact
 /// one where the evaluation leaves the f64 range or refuses.
 #[inline(always)]
-fn unfiltered_or_exact<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+fn unfiltered_or_exact<T>(model: &impl Model<T>, bounds: StaticBounds, out: &mut T) -> (Result<()>, Stage) {
     match stage::<f64, T>(model, out) {
         Ok(()) => (Ok(()), Stage::Fast),
-        Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, out),
+        Err(Fail::Refused(_) | Fail::Undecided(OutOfRange)) => adaptive(model, bounds, out),
     }
 }
 
@@ -497,15 +511,17 @@ pub(crate) trait Model<T> {
     fn run<N: Radical>(&self, out: &mut T) -> Exact<N, ()>;
 }
 
-/// Runs the model compensated; if that cannot decide because of the range, in
-/// double-double; if that cannot decide either, or the compensated value was
-/// too close to a zero or a rounding midpoint (perhaps exactly on it), in
-/// double-double tracking exact operations (decides ties and cancelled zeros
-/// formed without a quotient); and last in exact fractions, which decide
-/// everything: its undecided case is uninhabited.
+/// Runs the model compensated; if that cannot decide because of the range (or
+/// a root's conditioning), in double-double; if that cannot decide either, or
+/// the compensated value was too close to a zero or a rounding midpoint
+/// (perhaps exactly on it), in double-double tracking exact operations
+/// (decides ties and cancelled zeros formed without a quotient); and last in
+/// exact fractions, which decide everything: its undecided case is
+/// uninhabited. Where the model's static bounds are [`StaticBounds::Loose`],
+/// a close compensated value is tried in plain double-double first.
 #[inline(never)]
-fn adaptive<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
-    let (result, stage) = adaptive_stages(model, out);
+fn adaptive<T>(model: &impl Model<T>, bounds: StaticBounds, out: &mut T) -> (Result<()>, Stage) {
+    let (result, stage) = adaptive_stages(model, bounds, out);
     let counter = match stage {
         Stage::DoubleDouble => 1,
         Stage::Rational => 2,
@@ -532,7 +548,7 @@ pub fn settled_by_stage() -> [(Stage, u64); 3] {
 }
 
 #[inline(always)]
-fn adaptive_stages<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
+fn adaptive_stages<T>(model: &impl Model<T>, bounds: StaticBounds, out: &mut T) -> (Result<()>, Stage) {
     let settled = |result: Exact<Bounded, ()>| match result {
         Ok(()) => Some(Ok(())),
         Err(Fail::Refused(e)) => Some(Err(e)),
@@ -545,7 +561,10 @@ fn adaptive_stages<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage)
     };
     let double_double = match why {
         Unsettled::Range => settled(stage::<Bounded, T>(model, out)),
-        Unsettled::Close => None,
+        Unsettled::Close => match bounds {
+            StaticBounds::Tight => None,
+            StaticBounds::Loose => settled(stage::<Bounded, T>(model, out)),
+        },
         // The static bound does not cover a root; double-double's tracked one does.
         Unsettled::Root => settled(stage::<Bounded, T>(model, out)),
     };

@@ -1,7 +1,7 @@
 //! The planar case: a rigid lamina or a point mass against a barrier, with
 //! one tangential law (the normal, oblique and tangential endpoints).
 
-use super::{Arithmetic, Case, FastBounds, Model, Stage, evaluate};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
@@ -428,7 +428,7 @@ impl Case for PlanarImpact {
                     arithmetic,
                     in_range,
                     || self.error_scales(),
-                    FastBounds::StaticFirst,
+                    StaticBounds::Tight,
                     Point { mass, outputs },
                     out,
                 ),
@@ -456,7 +456,7 @@ impl Case for PlanarImpact {
                         arithmetic,
                         in_range,
                         || self.error_scales(),
-                        FastBounds::StaticFirst,
+                        StaticBounds::Tight,
                         Rigid { scene, law, outputs },
                         out,
                     ),

@@ -4,7 +4,7 @@
 
 use std::cmp::Ordering;
 
-use super::{Arithmetic, Case, FastBounds, Model, Stage, evaluate_contact};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
@@ -373,7 +373,7 @@ impl Case for SpatialImpact {
                     in_range,
                     certain,
                     || self.error_scales(),
-                    FastBounds::Both,
+                    StaticBounds::Loose,
                     Space {
                         impact: &impact,
                         outputs,

@@ -1,6 +1,6 @@
 //! The torsional case (section 4): spin about the contact normal.
 
-use super::{Arithmetic, Case, FastBounds, Model, Stage, evaluate};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
@@ -102,7 +102,7 @@ impl Case for TorsionalImpact {
                 arithmetic,
                 in_range,
                 || self.error_scales(),
-                FastBounds::StaticFirst,
+                StaticBounds::Tight,
                 TorsionModel {
                     torsion,
                     energy: outputs.energy,

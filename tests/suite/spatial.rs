@@ -1021,7 +1021,8 @@ async fn the_spatial_endpoint_takes_the_two_phase_law_and_refuses_at_its_members
 /// fractions, so `exact` costs a few times `fast`, not a hundred. Each
 /// answer with generic coefficients settles before the last stage, except
 /// where the law itself makes an exact zero (a sticking contact's final
-/// slip), and its structural zeros are `+0` in both precisions.
+/// slip), and its structural zeros are `+0` in both precisions. A sliding
+/// answer's root is taken in the compensated stage.
 #[test]
 fn a_sphere_on_a_level_plane_settles_before_the_fractions_stage() {
     use restitution::impact::Stage;
@@ -1122,4 +1123,15 @@ fn a_sphere_on_a_level_plane_settles_before_the_fractions_stage() {
     let settled = |name: &str| stages.iter().any(|((_, s), n)| s == name && *n > 0);
     assert!(settled("Compensated") && settled("DoubleDouble"), "{stages:?}");
     assert!(stages.keys().any(|(sticks, _)| *sticks), "{stages:?}");
+    // The compensated stage takes the slip's root: nearly every answer that
+    // does not stick settles there (without the root, most went on to
+    // double-double).
+    let moving = |stage: Option<&str>| -> usize {
+        stages
+            .iter()
+            .filter(|((sticks, s), _)| !sticks && stage.is_none_or(|name| s == name))
+            .map(|(_, n)| n)
+            .sum()
+    };
+    assert!(moving(Some("Compensated")) * 10 >= moving(None) * 9, "{stages:?}");
 }

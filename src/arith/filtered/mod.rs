@@ -25,8 +25,11 @@
 //! - (F3) `|x − h| ≤ E`.
 //!
 //! Decisions and outputs read the smaller of (F2) and (F3) (a root's and a
-//! divisor's certification read (F2)). (F2)'s `M` multiplies the
-//! conditioning of each factor along a chain of products and quotients,
+//! divisor's certification read (F2)); an evaluation may carry (F2) alone or
+//! (F3) alone instead (the `RUNNING` and `STATIC` parameters of
+//! [`Filtered`]), where the other would decide little or cost much. (F2)'s
+//! `M` multiplies the conditioning of each factor along a chain of products
+//! and quotients,
 //! where (F3) adds their relative errors, so a long chain (a contact in
 //! space) is bounded by (F3) far more tightly: on 5,000 random spatial
 //! impacts, (F2) alone left 602 decisions too close to tell, (F3) none.
@@ -103,7 +106,7 @@ const UNDERFLOW: f64 = f64::MIN_POSITIVE;
 /// `|h_x|`, it is taken grown by that factor, so the factor does not
 /// compound from step to step.)
 #[inline(always)]
-fn product_error<const R: bool>(x: &Filtered<R>, y: &Filtered<R>, e_z: f64) -> f64 {
+fn product_error<const R: bool, const S: bool>(x: &Filtered<R, S>, y: &Filtered<R, S>, e_z: f64) -> f64 {
     x.e.mul_add(RUNNING_SLACK, x.h.abs())
         .mul_add(y.e, y.h.abs().mul_add(x.e, e_z))
 }
@@ -152,12 +155,18 @@ fn once_rounded(h: f64) -> f64 {
     }
 }
 
-/// An f64 value with its static error bound and, with `RUNNING`, its
-/// running one; see the module documentation. Without `RUNNING` nothing
-/// reads `E`, so the compiler drops its bookkeeping: (F2) alone, for a short
-/// computation where it decides nearly everything at a fraction of the cost.
+/// An f64 value with its static error bound (with `STATIC`) and its
+/// running one (with `RUNNING`); see the module documentation. Without
+/// `RUNNING` nothing reads `E`, so the compiler drops its bookkeeping: (F2)
+/// alone, for a short computation where it decides nearly everything at a
+/// fraction of the cost. Without `STATIC`, `M` only tells an exact zero
+/// (`0`) from any other value (`1`: a flag, not a magnitude, which nothing
+/// reads as one) and (F2) is not formed: (F3) alone, for a long computation
+/// where the running bound decides what the static one would and the
+/// magnitudes' bookkeeping is a third of the cost. (One of the two is
+/// always on.)
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Filtered<const RUNNING: bool = true> {
+pub(crate) struct Filtered<const RUNNING: bool = true, const STATIC: bool = true> {
     /// The plain f64 evaluation.
     h: f64,
     /// `M`: an upper bound of the exact value's magnitude.
@@ -168,13 +177,27 @@ pub(crate) struct Filtered<const RUNNING: bool = true> {
     e: f64,
 }
 
-impl<const RUNNING: bool> Filtered<RUNNING> {
+/// `M` without `STATIC`: `0` for an exact zero, else `1` (a flag, not a
+/// magnitude), so that a product's is the factors' product and a sum's
+/// their maximum.
+#[inline(always)]
+fn zero_flag(zero: bool) -> f64 {
+    if zero { 0.0 } else { 1.0 }
+}
+
+impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// An f64 input, exactly (`λ = 0`).
     #[inline(always)]
     pub(crate) fn exact(x: f64) -> Self {
         Filtered {
             h: x,
-            m: if x == 0.0 { 0.0 } else { floored(x.abs()) },
+            m: if !STATIC {
+                zero_flag(x == 0.0)
+            } else if x == 0.0 {
+                0.0
+            } else {
+                floored(x.abs())
+            },
             lambda: 0.0,
             e: 0.0,
         }
@@ -198,7 +221,14 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
         let h = self.h + o.h;
         // λ depends on the path alone (module documentation), and so does
         // the choice of the rule for M.
-        let m = if self.lambda + o.lambda == 0.0 {
+        let m = if !STATIC {
+            // Of two exact operands an exact zero sum is `h = 0`.
+            if self.lambda + o.lambda == 0.0 {
+                zero_flag(h == 0.0)
+            } else {
+                max(self.m, o.m)
+            }
+        } else if self.lambda + o.lambda == 0.0 {
             once_rounded(h)
         } else {
             self.m + o.m
@@ -228,7 +258,11 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
     #[inline(always)]
     pub(crate) fn mul(&self, o: &Self) -> Self {
         let h = self.h * o.h;
-        let m = product_magnitude(self.m, o.m);
+        let m = if STATIC {
+            product_magnitude(self.m, o.m)
+        } else {
+            self.m * o.m
+        };
         Filtered {
             h,
             m,
@@ -247,7 +281,9 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
     pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
         let h = self.h.mul_add(b.h, c.h);
         let exact = self.lambda + b.lambda + c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE;
-        let m = if exact {
+        let m = if !STATIC {
+            if exact { 1.0 } else { max(self.m * b.m, c.m) }
+        } else if exact {
             once_rounded(h)
         } else {
             product_magnitude(self.m, b.m) + c.m
@@ -276,17 +312,10 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
     #[inline(always)]
     pub(crate) fn div(&self, o: &Self) -> Self {
         let q = self.h / o.h;
-        let error_y = (o.lambda * (U * SLACK)) * o.m;
-        let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
-        let certified = y_low >= 0.5 * o.h.abs() && y_low > 0.0;
-        let m = floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low);
-        // Selects rather than branches: the bookkeeping stays straight-line.
-        let m = if self.m == 0.0 {
-            0.0
-        } else if certified {
-            m
+        let m = if STATIC {
+            self.static_quotient_magnitude(o, q)
         } else {
-            f64::INFINITY
+            self.m
         };
         // (E_x + |h_x/h_y| E_y) / |y|, with |y| ≥ |h_y| − E_y taken with
         // E_y grown by its slack and certified, as (F2)'s divisor is, only
@@ -306,6 +335,24 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
         }
     }
 
+    /// `M` of the quotient `q` of `self` by `o` ([`Filtered::div`]): zero
+    /// for an exact zero dividend, `∞` for an uncertain divisor.
+    #[inline(always)]
+    fn static_quotient_magnitude(&self, o: &Self, q: f64) -> f64 {
+        let error_y = (o.lambda * (U * SLACK)) * o.m;
+        let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
+        let certified = y_low >= 0.5 * o.h.abs() && y_low > 0.0;
+        let m = floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low);
+        // Selects rather than branches: the bookkeeping stays straight-line.
+        if self.m == 0.0 {
+            0.0
+        } else if certified {
+            m
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
     /// one rounding of an exact value (or an exact zero).
     #[inline(always)]
@@ -314,7 +361,9 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
         // below u M for the floored M.
         Filtered {
             h: rounded,
-            m: if num == 0.0 {
+            m: if !STATIC {
+                zero_flag(num == 0.0)
+            } else if num == 0.0 {
                 0.0
             } else {
                 floored(rounded.abs() * ONE_PLUS_2U)
@@ -343,17 +392,30 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
                 e: 0.0,
             });
         }
-        let low = (self.h - (self.lambda * (U * SLACK)) * self.m) * (1.0 - 4.0 * U);
-        if !(self.h.is_finite() && self.m.is_finite() && self.lambda <= LAMBDA_MAX) {
-            return Err(Uncertain::Range);
-        }
-        // (A NaN `low` came from an infinite M, refused above.)
-        if low < FLOOR {
-            return Err(Uncertain::Close);
-        }
+        let grown = self.e * RUNNING_SLACK;
+        let m = if STATIC {
+            let low = (self.h - (self.lambda * (U * SLACK)) * self.m) * (1.0 - 4.0 * U);
+            if !(self.h.is_finite() && self.m.is_finite() && self.lambda <= LAMBDA_MAX) {
+                return Err(Uncertain::Range);
+            }
+            // (A NaN `low` came from an infinite M, refused above.)
+            if low < FLOOR {
+                return Err(Uncertain::Close);
+            }
+            floored(self.m * (1.0 + 4.0 * U) / (low.sqrt() * (1.0 - 4.0 * U)))
+        } else {
+            // The running bound certifies the radicand instead: the same
+            // refusals, read off (F3).
+            if !(self.h.is_finite() && grown.is_finite() && self.lambda <= LAMBDA_MAX) {
+                return Err(Uncertain::Range);
+            }
+            if (self.h - grown) * (1.0 - 4.0 * U) < FLOOR {
+                return Err(Uncertain::Close);
+            }
+            1.0
+        };
         // |√x − √h| = |x − h| / (√x + √h) ≤ E / (√(h − E) + √h), and at
         // most √E however much of h is uncertain (a NaN E stays a NaN).
-        let grown = self.e * RUNNING_SLACK;
         let carried = if grown < self.h {
             self.e / ((self.h - grown).sqrt() + s)
         } else {
@@ -361,7 +423,7 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
         };
         Ok(Filtered {
             h: s,
-            m: floored(self.m * (1.0 + 4.0 * U) / (low.sqrt() * (1.0 - 4.0 * U))),
+            m,
             lambda: self.lambda + 2.0,
             e: carried + U * s,
         })
@@ -433,14 +495,18 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
 
     /// A bound of `|x − h|`: the smaller of the static (F2) and the running
     /// (F3) one, each grown by its slack (a NaN running bound leaves the
-    /// static one); without `RUNNING`, the static one.
+    /// static one); without `RUNNING`, the static one; without `STATIC`,
+    /// the running one.
     #[inline(always)]
     fn error_bound(&self) -> f64 {
+        let running = self.e * RUNNING_SLACK;
+        if !STATIC {
+            return running;
+        }
         let fixed = (self.lambda * (U * SLACK)) * self.m;
         if !RUNNING {
             return fixed;
         }
-        let running = self.e * RUNNING_SLACK;
         if running < fixed { running } else { fixed }
     }
 
@@ -464,7 +530,8 @@ impl<const RUNNING: bool> Filtered<RUNNING> {
         } else if !(self.h.is_finite() && bound.is_finite()) {
             Err(Uncertain::Range)
         } else if bound == 0.0 {
-            // λ = 0 (an input) or M = 0 (an exact zero): h is the exact value.
+            // λ = 0 (an input) or M = 0 (an exact zero), or E = 0 without
+            // the static bound: h is the exact value.
             Ok(if self.h > 0.0 {
                 Ordering::Greater
             } else if self.h < 0.0 {

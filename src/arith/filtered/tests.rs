@@ -4,25 +4,32 @@ use crate::rng::Rng;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-/// The tests read both bounds (the static one alone is the same code).
+/// Most tests read both bounds (the static one alone is the same code);
+/// the random trees check the running one alone too.
 type Filtered = super::Filtered<true>;
 
 fn of(x: f64) -> BigRational {
     BigRational::from_float(x).unwrap()
 }
 
-/// Checks (F1) and (F2) of a computed value against its exact value.
-fn holds(v: &Filtered, exact: &BigRational, what: &str) {
-    if !(v.h.is_finite() && v.m.is_finite() && v.lambda.is_finite()) {
+/// Checks (F1), (F2) and (F3) of a computed value against its exact value
+/// (without the static bound, `M` is `0` for an exact zero and `∞` otherwise).
+fn holds<const S: bool>(v: &super::Filtered<true, S>, exact: &BigRational, what: &str) {
+    if !S {
+        assert!(v.m == 0.0 || v.m == 1.0, "{what}: M is not a zero flag: {v:?}");
+    }
+    if !(v.h.is_finite() && v.lambda.is_finite()) {
         return; // nothing decided
     }
-    let m = of(v.m * SLACK);
-    assert!(exact.abs() <= m, "{what}: |x| > M: {v:?} {}", exact);
     let error = (of(v.h) - exact).abs();
-    assert!(
-        error <= of(v.lambda * U * v.m * SLACK),
-        "{what}: |x − h| > λuM: {v:?}"
-    );
+    if S && v.m.is_finite() && v.m != 0.0 {
+        let m = of(v.m * SLACK);
+        assert!(exact.abs() <= m, "{what}: |x| > M: {v:?} {}", exact);
+        assert!(
+            error <= of(v.lambda * U * v.m * SLACK),
+            "{what}: |x − h| > λuM: {v:?}"
+        );
+    }
     if v.e.is_finite() {
         assert!(error <= of(v.e * RUNNING_SLACK), "{what}: |x − h| > E: {v:?}");
     }
@@ -46,19 +53,41 @@ fn draw(rng: &mut Rng, span: f64) -> f64 {
 /// and overflow; the plain f64 value is unchanged by the bookkeeping.
 #[test]
 fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
-    let mut rng = Rng::new(0xf11e);
+    random_trees::<true>(0xf11e);
+}
+
+/// The same with the running bound alone, which decides the signs the two
+/// together decide but for a few (the static bound's exact forms of
+/// products of inputs).
+#[test]
+fn the_running_bound_alone_holds_and_decides_on_random_expression_trees() {
+    let both = random_trees::<true>(0x5e1f);
+    let running = random_trees::<false>(0x5e1f);
+    assert!(
+        running.0 >= both.0 * 99 / 100,
+        "the running bound alone decided {} signs, both {}",
+        running.0,
+        both.0
+    );
+}
+
+/// The random trees of the tests above with the static bound (`S`) or
+/// without; the signs decided and left close.
+fn random_trees<const S: bool>(seed: u64) -> (usize, usize) {
+    type F<const S: bool> = super::Filtered<true, S>;
+    let mut rng = Rng::new(seed);
     let (mut decided, mut close, mut roots) = (0, 0, 0);
     let (mut answered, mut answered_roots) = (0, 0);
     for case in 0..6_000 {
         let span = [4.0, 60.0, 600.0][case % 3];
-        let mut pool: Vec<(Filtered, BigRational, f64)> = (0..4)
+        let mut pool: Vec<(F<S>, BigRational, f64)> = (0..4)
             .map(|k| {
                 let x = if k == 0 && case % 7 == 0 {
                     0.0
                 } else {
                     draw(&mut rng, span)
                 };
-                (Filtered::exact(x), of(x), x)
+                (F::<S>::exact(x), of(x), x)
             })
             .collect();
         for step in 0..14 {
@@ -73,7 +102,7 @@ fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
                 3 => (a.mul_add(&b, &c), &ea * &eb + &ec, fa.mul_add(fb, fc)),
                 4 => {
                     // A near-cancellation: x minus a neighbour of its f64 value.
-                    let near = Filtered::exact(fa.next_up());
+                    let near = F::<S>::exact(fa.next_up());
                     (a.sub(&near), &ea - of(fa.next_up()), fa - fa.next_up())
                 }
                 5 => {
@@ -84,15 +113,17 @@ fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
                 }
                 _ => match a.abs_for_test().sqrt() {
                     // (`abs_for_test` leaves an undecided value as it is.)
-                    Ok(r) if r.m.is_finite() && (r.m * SLACK).is_finite() => {
+                    Ok(r) if r.m == 0.0 || r.error_bound().is_finite() => {
                         roots += 1;
                         // The exact root is irrational in general: check
                         // the bound by squaring an enclosure.
                         let x = ea.abs();
                         let h = of(r.h);
-                        let e = of(r.lambda * U * r.m * SLACK);
+                        let e = of(r.error_bound());
                         let (lo, hi) = (&h - &e, &h + &e);
-                        assert!(of(r.m * SLACK).pow(2) >= x, "case {case}: root M");
+                        if S {
+                            assert!(of(r.m * SLACK).pow(2) >= x, "case {case}: root M");
+                        }
                         assert!(
                             (lo <= BigRational::zero() || &lo * &lo <= x) && &hi * &hi >= x,
                             "case {case}: root bound {r:?}"
@@ -143,7 +174,7 @@ fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
                 assert!(square >= (&one - &p).pow(2) * &target, "{what}");
                 assert!(answer == 0.0 || (answer > 0.0) == exact.is_positive(), "{what}");
             }
-            if v.h.is_finite() && v.m.is_finite() {
+            if v.h.is_finite() && v.error_bound().is_finite() {
                 pool.push((v, exact, plain));
             }
         }
@@ -156,6 +187,7 @@ fn the_bounds_hold_and_decided_signs_are_exact_on_random_expression_trees() {
         answered > 30_000 && answered_roots > 5_000,
         "{answered} {answered_roots}"
     );
+    (decided, close)
 }
 
 /// An output answered in `fast` is within the promised relative error of
@@ -171,7 +203,7 @@ fn within_promise(answer: f64, exact: &BigRational, what: &str) {
     }
 }
 
-impl Filtered {
+impl<const S: bool> super::Filtered<true, S> {
     /// `|x|` of a value whose sign is decided (else itself).
     fn abs_for_test(&self) -> Self {
         match self.sign() {

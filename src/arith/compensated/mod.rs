@@ -111,8 +111,9 @@ pub(crate) enum Unsettled {
     /// The value lies too close to zero or to a rounding midpoint for the
     /// bound: possibly exactly there, which only exact tracking decides.
     Close,
-    /// The model takes a square root, which the static bound does not cover
-    /// (double-double, with its tracked bound, does).
+    /// A square root whose radicand is too close to zero for its
+    /// conditioning (or out of range): double-double, with its tracked
+    /// bound, may still decide.
     Root,
 }
 
@@ -261,6 +262,49 @@ impl Compensated {
         }
     }
 
+    /// The square root of a value whose exact value `x` the model has
+    /// decided non-negative. `s = √h` correctly rounded, `r = h − s²` exact
+    /// (one FMA: the remainder of a correctly rounded root is a double for
+    /// `h ≥ 2⁻⁹⁰⁰`), and `l = (r + l_x) / (2s)`, the first-order term of
+    /// `√(s² + t) = s + t / (2s) − R` with `t = x − s² = r + l_x + δ`,
+    /// `|δ| ≤ λ² u² M_x`, `|r| ≤ 2u h`.
+    ///
+    /// With the radicand's conditioning `K = M_x / h` and
+    /// `(λ + 2) u K ≤ 2⁻¹⁰` (checked), `|t| ≤ (λ + 2) u M_x` to first order,
+    /// so `a = t / s² ≤ 2⁻¹⁰`: `√x ≥ s (1 − 2⁻⁹)`, and `M_q = M_x / (s (1 − 2⁻⁹))`
+    /// is at least `M_x / √x ≥ √x` and at least `M_x / s`; and
+    /// `0 ≤ R ≤ s a² / 8 · (1 − a)^(−3/2) ≤ (λ + 2)² K u² M_q / 7`. The roundings
+    /// of `r + l_x` and of the quotient add at most `(λ + 2) u² M_q`, and
+    /// `δ / (2s)` at most `λ² u² M_q / 2`; `|l| ≤ (λ + 2) u M_q / 2`. So
+    /// `ε_q ≤ λ² / 2 + λ + 3 + (λ + 2)² K / 7 ≤ ((λ + 3)(1 + √K))²` and
+    /// `λ_q = (λ + 3)(1 + √K)`: the one rule whose `λ` reads the data (it
+    /// still only grows). An exact zero's root is the exact zero. A radicand
+    /// the check refuses (`h` below 2⁻⁹⁰⁰ or not positive, `K` too large,
+    /// out of range) is [`Unsettled::Root`]: double-double decides it.
+    #[inline(always)]
+    pub(crate) fn sqrt(&self) -> Result<Self, Unsettled> {
+        if self.m == 0.0 {
+            return Ok(Compensated::exact(0.0));
+        }
+        let conditioning = self.m / self.h * (1.0 + 4.0 * U);
+        // (A NaN or non-positive h fails the first test.)
+        let certified = self.h >= FLOOR
+            && self.m.is_finite()
+            && self.lambda <= LAMBDA_MAX
+            && (self.lambda + 2.0) * U * conditioning <= 1.0 / 1024.0;
+        if !certified {
+            return Err(Unsettled::Root);
+        }
+        let s = self.h.sqrt();
+        let r = (-s).mul_add(s, self.h);
+        Ok(Compensated {
+            h: s,
+            l: (r + self.l) / (2.0 * s),
+            m: floored(self.m / (s * (1.0 - 1.0 / 512.0)) * (1.0 + 4.0 * U)),
+            lambda: (self.lambda + 3.0) * (1.0 + conditioning.sqrt()),
+        })
+    }
+
     /// `h + l` renormalised, and the bound `λ² u² M` on its distance from the
     /// exact value (zero only when `h + l` is exact: `λ = 0` or `M = 0`, as a
     /// non-zero `M ≥ 2⁻⁹⁰⁰` and `λ ≥ 2` keep the product above the subnormal
@@ -329,215 +373,4 @@ impl Compensated {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::rng::Rng;
-    use num_rational::BigRational;
-    use num_traits::Signed;
-
-    fn of(x: f64) -> BigRational {
-        BigRational::from_float(x).unwrap()
-    }
-
-    /// On every `M` the rules can form (0, at least [`FLOOR`], ∞, a NaN),
-    /// `product_magnitude` is the floored product it stands for: zero when a
-    /// factor is zero, at least [`FLOOR`] and at least `M_x M_y` otherwise,
-    /// and exactly `M_x M_y` where that product is itself at least [`FLOOR`].
-    #[test]
-    fn product_magnitude_is_the_floored_product_or_an_exact_zero() {
-        let mut ms = vec![
-            0.0,
-            FLOOR,
-            f64::INFINITY,
-            f64::NAN,
-            1.0,
-            2f64.powi(-450),
-            2f64.powi(600),
-        ];
-        let mut rng = Rng::new(0x9a9);
-        for _ in 0..200 {
-            ms.push(FLOOR * 2f64.powf(rng.unit() * 1800.0) * (1.0 + rng.unit()));
-        }
-        for &mx in &ms {
-            for &my in &ms {
-                let p = product_magnitude(mx, my);
-                // The form it replaces (which scaled min(M_x, M_y) by 2⁹⁰⁰),
-                // bit for bit, NaNs included.
-                let before = max(mx * my, min(FLOOR, min(mx, my) * 2f64.powi(900)));
-                assert_eq!(p.to_bits(), before.to_bits(), "{mx:e} {my:e}");
-                let exact = mx * my;
-                if mx.is_nan() || my.is_nan() {
-                    // An overflowed M: nothing is certified from it.
-                    continue;
-                } else if mx == 0.0 || my == 0.0 {
-                    assert_eq!(p.to_bits(), 0f64.to_bits(), "{mx:e} {my:e}");
-                } else if exact >= FLOOR {
-                    assert_eq!(p.to_bits(), exact.to_bits(), "{mx:e} {my:e}");
-                } else {
-                    assert_eq!(p, FLOOR, "{mx:e} {my:e}");
-                }
-            }
-        }
-    }
-
-    /// A quotient too small to certify decides nothing, alone or in later
-    /// operations, yet still approximates its value for a refusal's payload
-    /// (it was a NaN there).
-    #[test]
-    fn an_uncertified_quotient_decides_nothing_but_approximates_its_value() {
-        let q = Compensated::exact(1e-300).div(&Compensated::exact(1e300));
-        assert_eq!(q.approx(), 1e-300 / 1e300);
-        // The operands' compensated parts count: ((1 + 2⁻⁶⁰) − 1) / 2¹⁰⁰ is
-        // 2⁻¹⁶⁰, though the plain parts' quotient is 0.
-        let one = Compensated::exact(1.0);
-        let tiny = one.add(&Compensated::exact(2f64.powi(-60))).sub(&one);
-        let r = tiny.div(&Compensated::exact(2f64.powi(100)));
-        assert_eq!(r.approx(), 2f64.powi(-160));
-        assert!(r.sign().is_err());
-        assert!(q.sign().is_err() && q.round().is_err());
-        let sum = q.add(&Compensated::exact(1.0));
-        assert!(sum.sign().is_err() && sum.round().is_err());
-        assert!(q.mul(&Compensated::exact(2.0)).sign().is_err());
-    }
-
-    /// Checks (I1)–(I3) of a computed value against its exact value.
-    fn holds(v: &Compensated, exact: &BigRational, what: &str) {
-        if !(v.h.is_finite() && v.l.is_finite() && v.m.is_finite()) {
-            return; // nothing certified
-        }
-        let m = of(v.m * M_GROWTH);
-        assert!(exact.abs() <= m, "{what}: |x| > M: {v:?}");
-        assert!(
-            of(v.l).abs() <= of(v.lambda * U * v.m * M_GROWTH),
-            "{what}: |l| > λuM: {v:?}"
-        );
-        let error = (of(v.h) + of(v.l) - exact).abs();
-        let eps = v.lambda * v.lambda;
-        assert!(
-            error <= of(eps * U2 * v.m * M_GROWTH),
-            "{what}: error past λ²u²M: {v:?}"
-        );
-    }
-
-    /// A random value of magnitude up to `2^±span`, either sign.
-    fn draw(rng: &mut Rng, span: f64) -> f64 {
-        (rng.unit() - 0.5) * 2f64.powf((rng.unit() - 0.5) * 2.0 * span)
-    }
-
-    /// Random expression trees of sums, products and quotients, each node's
-    /// invariants checked against exact rationals, across exponent ranges that
-    /// reach the floor and overflow.
-    #[test]
-    fn the_invariants_hold_on_random_expression_trees() {
-        let mut rng = Rng::new(0x5eed);
-        let (mut certified, mut quotients) = (0, 0);
-        for case in 0..4_000 {
-            let span = [8.0, 120.0, 600.0][case % 3];
-            let mut pool: Vec<(Compensated, BigRational)> = (0..4)
-                .map(|k| {
-                    let x = if k == 0 && case % 7 == 0 {
-                        0.0
-                    } else {
-                        draw(&mut rng, span)
-                    };
-                    (Compensated::exact(x), of(x))
-                })
-                .collect();
-            for step in 0..12 {
-                let i = (rng.unit() * pool.len() as f64) as usize;
-                let j = (rng.unit() * pool.len() as f64) as usize;
-                let (a, ea) = pool[i].clone();
-                let (b, eb) = pool[j].clone();
-                let (v, exact) = match (rng.unit() * 4.0) as u32 {
-                    0 => (a.add(&b), &ea + &eb),
-                    1 => (a.sub(&b), &ea - &eb),
-                    2 => (a.mul(&b), &ea * &eb),
-                    _ => {
-                        if eb == of(0.0) {
-                            continue;
-                        }
-                        let q = a.div(&b);
-                        if q.h.is_finite() {
-                            quotients += 1;
-                        }
-                        (q, &ea / &eb)
-                    }
-                };
-                if !v.h.is_finite() || !v.m.is_finite() {
-                    continue;
-                }
-                holds(&v, &exact, &format!("case {case} step {step}"));
-                if let Ok(r) = v.round() {
-                    certified += 1;
-                    assert_eq!(
-                        r,
-                        crate::arith::fraction::round_rational(&exact),
-                        "case {case} step {step}"
-                    );
-                }
-                if let Ok(s) = v.sign() {
-                    assert_eq!(s, exact.cmp(&of(0.0)), "case {case} step {step}");
-                }
-                pool.push((v, exact));
-            }
-        }
-        assert!(certified > 20_000 && quotients > 5_000, "{certified} {quotients}");
-    }
-
-    #[test]
-    fn inputs_are_exact_and_operations_are_not_assumed_exact() {
-        let a = Compensated::exact(0.1);
-        assert_eq!(a.round(), Ok(0.1));
-        assert_eq!(Compensated::exact(0.0).sign(), Ok(Ordering::Equal));
-        assert_eq!(Compensated::exact(-0.0).round(), Ok(0.0));
-        // An exact cancellation is not decided here (the tracked stage decides it).
-        let s = a.add(&Compensated::exact(0.2));
-        assert_eq!(s.sub(&s).sign(), Err(Unsettled::Close));
-        // 0.1 + 0.2 is exactly halfway between two doubles: a tie is never certified.
-        assert_eq!(s.round(), Err(Unsettled::Close));
-        let t = a.add(&Compensated::exact(0.7));
-        assert_eq!(t.round(), Ok(0.1 + 0.7));
-        let third = Compensated::exact(1.0).div(&Compensated::exact(3.0));
-        assert_eq!(third.round(), Ok(1.0 / 3.0));
-        // A product with a zero input is exactly zero (a sticking V_ct = −0 · v_ct).
-        let zero = Compensated::exact(0.0).mul(&third);
-        assert_eq!(zero.m, 0.0);
-        assert_eq!((zero.round(), zero.sign()), (Ok(0.0), Ok(Ordering::Equal)));
-        assert_eq!(zero.add(&third).round(), Ok(1.0 / 3.0));
-        assert_eq!(zero.div(&third).round(), Ok(0.0));
-    }
-
-    #[test]
-    fn overflow_and_tiny_quotients_certify_nothing() {
-        let big = Compensated::exact(1e300);
-        assert_eq!(big.mul(&big).round(), Err(Unsettled::Range));
-        assert_eq!(big.mul(&big).sign(), Err(Unsettled::Range));
-        let q = Compensated::exact(1e-300).div(&Compensated::exact(1e300));
-        assert_eq!(q.round(), Err(Unsettled::Range));
-        let nearly_zero = Compensated::exact(1.0)
-            .div(&Compensated::exact(3.0))
-            .mul(&Compensated::exact(3.0))
-            .sub(&Compensated::exact(1.0));
-        assert_eq!(
-            Compensated::exact(1.0).div(&nearly_zero).round(),
-            Err(Unsettled::Range)
-        );
-        // Subnormal dividend and divisor: the remainder underflows, and the
-        // answer is either certified right or not certified.
-        let tiny = f64::from_bits(1 << 14); // 2⁻¹⁰⁶⁰
-        let (x, y) = (3.0 * tiny, 7.0 * tiny);
-        let q = Compensated::exact(x)
-            .mul(&Compensated::exact(1.1))
-            .div(&Compensated::exact(y));
-        let exact = of(x) * of(1.1) / of(y);
-        if let Ok(r) = q.round() {
-            assert_eq!(r, crate::arith::fraction::round_rational(&exact));
-        }
-        holds(&q, &exact, "subnormal quotient");
-        // A divisor near the top of the range has a subnormal reciprocal.
-        let q = Compensated::exact(3.0e300).div(&Compensated::exact(1.5e308));
-        assert_eq!(q.round(), Err(Unsettled::Range));
-        let q = Compensated::exact(3.0e300).div(&Compensated::exact(1.5e300));
-        assert_eq!(q.round(), Ok(2.0));
-    }
-}
+mod tests;
