@@ -47,7 +47,7 @@ const QUEUE: usize = 4096;
 /// workers keep busy (a context switch, a worker pre-empted): 10 ms took
 /// fewer context switches per request than 1 ms in every round measured,
 /// and about 7 % less CPU per request on average (docs/performance-log.md,
-/// "Where issue 18 ends").
+/// "Two changes measured together").
 const LINGER: Duration = Duration::from_millis(10);
 
 /// The linger after a batch of more than a quarter of the queue: lines are

@@ -1,6 +1,6 @@
 //! Impacts out of trajectories: the ContactNets cube tosses (`tests/data/
-//! contactnets_cube_tosses_0-399.csv.gz`, a copy of
-//! `../shared/validation/` with its provenance header), their bounces, and the
+//! contactnets_cube_tosses_0-399.csv.gz`, the authors' converted release
+//! with its provenance header), their bounces, and the
 //! angular-momentum balance of single-corner impacts that checks the
 //! extraction and identifies the cube's inertia. Shared by
 //! `tests/suite/tosses.rs` and `examples/cube_tosses.rs`; the method and the
@@ -970,7 +970,7 @@ pub fn fit_inertia_tensor(bounces: &[Bounce]) -> ([f64; 6], f64) {
     ([x[0], x[1], x[2], x[3], x[4], x[5]], residual)
 }
 
-// Prediction of held-out tosses (issue 34, item 3).
+// Prediction of held-out tosses (docs/tosses.md).
 
 /// The pitch radius `ρ_p` of the twist law's friction couple (m): 10 mm,
 /// about a fifth of the half-width. Only `μ_z ρ_p` enters the couple's cap
@@ -1198,7 +1198,8 @@ impl Score {
     }
     /// G and contact point together, `sqrt(Σ (|e_G|² + |e_C|²) / n)` (m/s):
     /// the RMS length of the six-vector of both points' velocity errors (the
-    /// issue's convention; divide by √2 for the RMS per point).
+    /// convention of the engine comparison in docs/tosses.md; divide by √2
+    /// for the RMS per point).
     pub fn rms_gc(&self) -> f64 {
         self.rms(self.g + self.c)
     }

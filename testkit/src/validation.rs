@@ -1,4 +1,4 @@
-//! The validation datasets (`tests/data/`, copies of `../shared/validation/`
+//! The validation datasets (`tests/data/`, each copied from its published source
 //! with their provenance headers) and the model's predictions for them, shared
 //! by `tests/validation.rs` (bounds) and `examples/validation_report.rs`
 //! (tables and plots in `docs/validation.md`).
