@@ -1429,40 +1429,10 @@ pub const SIGMA_W: f64 = SIGMA_V / (1.732_050_807_568_877_2 * HALF_WIDTH);
 /// and `Δω`, [`SIGMA_V`], [`SIGMA_W`], Levenberg–Marquardt): the
 /// coefficients, or the fit's refusal.
 pub fn fit_two_phase(train: &[&Bounce], inertia: f64, model: Model) -> Result<Vec<f64>, String> {
-    use restitution::fit::{Measured, SpatialChange, SpatialLaw, SpatialObservation};
-    let law = match model {
-        Model::TwoPhase => SpatialLaw::KineticRestitution,
-        Model::CoulombApproach => SpatialLaw::KineticFriction,
-        _ => return Err(format!("{} is not a two-phase law", model.name())),
-    };
-    let measured = |a: [f64; 3], b: [f64; 3], sigma: f64| {
-        [0, 1, 2].map(|i| Measured {
-            value: b[i] - a[i],
-            uncertainty: sigma,
-        })
-    };
-    let observations: Vec<SpatialObservation> = train
-        .iter()
-        .map(|b| {
-            let impact = spatial_impact(
-                b,
-                inertia,
-                restitution::Law::Frictionless { restitution: 0.0 },
-                None,
-            );
-            SpatialObservation {
-                a: impact.a,
-                b: None,
-                contact: impact.contact,
-                measured: vec![SpatialChange {
-                    velocity_change: measured(b.pre.velocity, b.post.velocity, SIGMA_V),
-                    angular_velocity_change: Some(measured(b.pre.omega, b.post.omega, SIGMA_W)),
-                }],
-            }
-        })
-        .collect();
-    let fit = restitution::fit::spatial(&observations, law, None).map_err(|e| e.to_string())?;
-    Ok(fit.estimates.iter().map(|(_, e)| e.value).collect())
+    match model {
+        Model::TwoPhase | Model::CoulombApproach => Ok(fit_spatial(train, inertia, model)?.values()),
+        _ => Err(format!("{} is not a two-phase law", model.name())),
+    }
 }
 
 /// A law fitted through `restitution::fit::spatial`, with standard errors.
