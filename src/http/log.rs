@@ -15,12 +15,9 @@
 //! room rather than lose its line. One thread writes everything, so lines
 //! keep the order in which they were queued.
 //!
-//! Measured side by side against the access log as `tracing` events written
-//! by `tracing-appender`'s non-blocking writer in its lossless mode: with the
-//! crate the service served 11–19 % fewer requests per second and spent
-//! 14–33 % more CPU per request, where two identical servers agreed within
-//! 2 % (docs/performance-log.md, 2026-11-27, "hand-written against the
-//! crates"; `benches/scripts/hand-vs-crates`).
+//! Against `tracing-appender`'s lossless non-blocking writer, side by side:
+//! 11–19 % more requests per second, identical servers within 2 %
+//! (`benches/scripts/hand-vs-crates`; docs/performance-log.md).
 
 use std::io::Write;
 use std::sync::OnceLock;
