@@ -154,15 +154,27 @@ def points():
     return np.linspace(SWEEP_START, SWEEP_STOP, POINTS)
 
 
-def time_variant(solve, repetitions):
-    """Seconds per sweep (points generated and solved) of each repetition after one warm-up."""
-    solve(points())
+def time_variant(solve, repetitions, inputs=None):
+    """Seconds per sweep (inputs generated and solved) of each repetition after
+    one warm-up; the inputs are this sweep's points unless another peer gives
+    its own generator (a tuple of arguments)."""
+    inputs = inputs or (lambda: (points(),))
+    solve(*inputs())
     seconds = []
     for _ in range(repetitions):
         start = time.perf_counter()
-        solve(points())
+        solve(*inputs())
         seconds.append(time.perf_counter() - start)
     return seconds
+
+
+def print_rates(variants, points_per_sweep, repetitions, inputs=None, digits=1):
+    """One line per (label, solve): M points/s, best and median."""
+    for label, solve in variants:
+        seconds = time_variant(solve, repetitions, inputs)
+        best, median = min(seconds), statistics.median(seconds)
+        print(f"{label}: {points_per_sweep / best / 1e6:.{digits}f} M points/s best ({best * 1e3:.2f} ms), "
+              f"{points_per_sweep / median / 1e6:.{digits}f} M points/s median ({median * 1e3:.2f} ms)")
 
 
 def service_sweep(binary):
@@ -266,11 +278,8 @@ def main():
 
     print(f"numpy {np.__version__}, python {sys.version.split()[0]}, {POINTS} points, "
           f"best of {args.repetitions}, one thread")
-    for label, solve in [("all outputs", oblique_coulomb), ("one output", final_tangential_contact_velocity)]:
-        seconds = time_variant(solve, args.repetitions)
-        best, median = min(seconds), statistics.median(seconds)
-        print(f"{label}: {POINTS / best / 1e6:.1f} M points/s best ({best * 1e3:.2f} ms), "
-              f"{POINTS / median / 1e6:.1f} M points/s median ({median * 1e3:.2f} ms)")
+    print_rates([("all outputs", oblique_coulomb), ("one output", final_tangential_contact_velocity)],
+                POINTS, args.repetitions)
 
     if args.no_check:
         return 0

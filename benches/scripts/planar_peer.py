@@ -47,7 +47,6 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
 import argparse  # noqa: E402
 import csv  # noqa: E402
 import json  # noqa: E402
-import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
@@ -55,21 +54,16 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+import numpy_peer  # noqa: E402
+
 A_VX = (5.0, 25.0, 400)  # /bodies/0/velocity/x, the slower axis
 B_VY = (-30.0, 30.0, 500)  # /bodies/1/velocity/y, the faster axis
 POINTS = A_VX[2] * B_VY[2]
 
-SCENE = {
-    "bodies": [
-        {"mass": 1500.0, "inertia": 2500.0, "position": {"x": 0.0, "y": 0.0},
-         "velocity": {"x": 15.0, "y": 0.0}, "angular_velocity": 0.0},
-        {"mass": 1200.0, "inertia": 1800.0, "position": {"x": 3.0, "y": -1.5},
-         "velocity": {"x": 0.0, "y": 12.0}, "angular_velocity": 0.0},
-    ],
-    "contact": {"point": {"x": 2.2, "y": -0.6}, "normal": {"x": -1.0, "y": 0.0}},
-    "restitution": 0.2,
-    "friction": 0.6,
-}
+# The two cars of examples/planar_car_to_car_sweep.json (Coulomb friction 0.6).
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                       "planar_car_to_car_sweep.json")) as _example:
+    SCENE = json.load(_example)["base"]
 
 TOLERANCE_ULPS = 8  # of each column's largest magnitude
 
@@ -211,17 +205,6 @@ def final_tangential_contact_velocity(avx, bvy):
     mu = -np.copysign(f, ut)
     slid = ut + (wnt + mu * wtt) * qn_target / (wnn + mu * wnt)
     return np.where(sticking, 0.0, slid) / np.sqrt(nn)
-
-
-def time_variant(solve, repetitions):
-    """Seconds per sweep (grid generated and solved) of each repetition after one warm-up."""
-    solve(*grid())
-    seconds = []
-    for _ in range(repetitions):
-        start = time.perf_counter()
-        solve(*grid())
-        seconds.append(time.perf_counter() - start)
-    return seconds
 
 
 def request(outputs=None, one_point=False):
@@ -370,11 +353,8 @@ def main():
         return 0
     print(f"numpy {np.__version__}, python {sys.version.split()[0]}, {POINTS} points, "
           f"best of {args.repetitions}, one thread")
-    for label, solve in [("all outputs", planar_coulomb), ("one output", final_tangential_contact_velocity)]:
-        seconds = time_variant(solve, args.repetitions)
-        best, median = min(seconds), statistics.median(seconds)
-        print(f"{label}: {POINTS / best / 1e6:.2f} M points/s best ({best * 1e3:.2f} ms), "
-              f"{POINTS / median / 1e6:.2f} M points/s median ({median * 1e3:.2f} ms)")
+    numpy_peer.print_rates([("all outputs", planar_coulomb), ("one output", final_tangential_contact_velocity)],
+                           POINTS, args.repetitions, inputs=grid, digits=2)
     if args.no_check:
         return 0
     if not cross_check(args.binary):

@@ -14,8 +14,9 @@
 //! The bound is static, in the manner of Shewchuk's predicates: each value also
 //! carries `M`, an upper bound of `|x|` built like the value with every term
 //! taken positive (a quotient's is the condition-weighted
-//! `(M_x + |q| M_y) / |y|_low`), and a small integer `λ` that depends only on
-//! the shape of the computation. The invariants are, for the exact value `x`
+//! `(M_x + |q| M_y) / |y|_low`), and a small number `λ` that depends only on
+//! the shape of the computation (a root's also on its radicand's
+//! conditioning, [`Compensated::sqrt`]). The invariants are, for the exact value `x`
 //! and `u = 2⁻⁵³`:
 //!
 //! - (I1) `|x| ≤ M`,

@@ -163,7 +163,7 @@ fn once_rounded(h: f64) -> f64 {
 /// (`0`) from any other value (`1`: a flag, not a magnitude, which nothing
 /// reads as one) and (F2) is not formed: (F3) alone, for a long computation
 /// where the running bound decides what the static one would and the
-/// magnitudes' bookkeeping is a third of the cost. (One of the two is
+/// magnitudes' bookkeeping costs 20–40 % more (docs/performance-log.md). (One of the two is
 /// always on.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Filtered<const RUNNING: bool = true, const STATIC: bool = true> {
