@@ -17,12 +17,20 @@ pub trait Answers: Sized {
     /// impact did not compute it (an optional output not asked for, body B
     /// of a barrier impact).
     fn reader(output: Output) -> Option<fn(&Self) -> Value>;
+    /// How to read `output`'s column off many outcomes, `cells[i]` from
+    /// `outcomes[i]` (the two equally long): one call per column of a block
+    /// of a sweep, the read inlined into its loop, rather than one call per
+    /// point and column. `None` for an output of another case.
+    fn column(output: Output) -> Option<ColumnReader<Self>>;
     /// One output's value, `None` for an output of another case.
     #[inline]
     fn value(&self, output: Output) -> Option<Value> {
         Self::reader(output).map(|read| read(self))
     }
 }
+
+/// Reads one output's column off many outcomes into as many cells ([`Answers::column`]).
+pub type ColumnReader<O> = fn(&[O], &mut [Value]);
 
 /// Implements [`Answers`] for an outcome type from one list of
 /// `Output => |outcome| value` entries, in response order.
@@ -35,6 +43,18 @@ macro_rules! answers {
             fn reader(output: Output) -> Option<fn(&Self) -> Value> {
                 match output {
                     $(Output::$output => Some(|$o: &Self| Value::from($read)),)*
+                    _ => None,
+                }
+            }
+
+            #[inline]
+            fn column(output: Output) -> Option<ColumnReader<Self>> {
+                match output {
+                    $(Output::$output => Some(|outcomes: &[Self], cells: &mut [Value]| {
+                        for ($o, cell) in outcomes.iter().zip(cells) {
+                            *cell = Value::from($read);
+                        }
+                    }),)*
                     _ => None,
                 }
             }

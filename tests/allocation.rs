@@ -108,7 +108,10 @@ fn no_allocation_per_point() {
         let small = allocations_for(sweep, 1_000);
         let large = allocations_for(sweep, 100_000);
         assert_eq!(small, large, "allocations grow with the number of points");
-        assert!(large <= 4, "{large} allocations per range");
+        // The odometer's axis lengths and digits, the current axis values,
+        // the row handed to the visitor, and the block's axis values, digits,
+        // outcomes, results and cells: nine buffers per range, whatever its length.
+        assert!(large <= 9, "{large} allocations per range");
     }
     let base = TorsionalImpact {
         mass: 0.1,

@@ -4,8 +4,7 @@
 use super::{Cell, SweepCase};
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Arithmetic, Case, Precision, Solver};
-use crate::outcome::{Answers, Outputs};
-use crate::quantity::Value;
+use crate::outcome::{Answers, ColumnReader, Outputs};
 
 /// An impact case over a grid: the base impact's [`Solver`] and the chosen
 /// output columns.
@@ -13,8 +12,9 @@ use crate::quantity::Value;
 pub struct CaseSweep<C: Case> {
     solver: Solver<C>,
     columns: Vec<Output>,
-    /// How each column is read off an outcome (the case's declaration, looked up once).
-    readers: Vec<fn(&C::Outcome) -> Value>,
+    /// How each column is read off a block's outcomes (the case's
+    /// declaration, looked up once).
+    readers: Vec<ColumnReader<C::Outcome>>,
 }
 
 /// Why a sweep of a case cannot be prepared.
@@ -54,7 +54,7 @@ impl<C: Case> CaseSweep<C> {
         }
         let readers = columns
             .iter()
-            .map(|&c| C::Outcome::reader(c).ok_or(CaseSweepError::NotAnswered(c)))
+            .map(|&c| C::Outcome::column(c).ok_or(CaseSweepError::NotAnswered(c)))
             .collect::<Result<_, _>>()?;
         Ok(CaseSweep {
             solver: Solver::in_arithmetic(base, swept, Outputs::needed_by(&columns), arithmetic),
@@ -82,6 +82,7 @@ impl<C: Case> CaseSweep<C> {
 impl<C: Case> SweepCase for CaseSweep<C> {
     type Point = C;
     type Param = Input;
+    type Outcome = C::Outcome;
 
     /// Sets an input the point reads ([`CaseSweep::new`] refuses axes of any other).
     #[inline]
@@ -96,13 +97,13 @@ impl<C: Case> SweepCase for CaseSweep<C> {
     }
 
     #[inline(always)]
-    fn evaluate(&self, point: &C, cells: &mut [Cell]) -> Result<(), ImpactError> {
-        let mut outcome = C::Outcome::default();
-        self.solver.solve_into(point, &mut outcome)?;
-        for (cell, read) in cells.iter_mut().zip(&self.readers) {
-            *cell = read(&outcome);
-        }
-        Ok(())
+    fn evaluate(&self, point: &C, out: &mut C::Outcome) -> Result<(), ImpactError> {
+        self.solver.solve_into(point, out)
+    }
+
+    #[inline]
+    fn read(&self, column: usize, outcomes: &[C::Outcome], cells: &mut [Cell]) {
+        (self.readers[column])(outcomes, cells)
     }
 }
 

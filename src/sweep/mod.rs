@@ -33,13 +33,24 @@ pub trait SweepCase: Sync {
     type Point: Copy + Send + Sync;
     /// Which input an axis sets.
     type Param: Copy + Send + Sync;
+    /// One point's answer, before its columns are read off.
+    type Outcome: Copy + Default;
     /// Sets one input of a point.
     fn set(point: &mut Self::Point, param: Self::Param, value: f64);
     /// Number of output columns.
     fn columns(&self) -> usize;
-    /// Evaluates one point into `cells` (`columns()` long).
-    fn evaluate(&self, point: &Self::Point, cells: &mut [Cell]) -> Result<(), ImpactError>;
+    /// Evaluates one point into `out` (left as it was when the point has no answer).
+    fn evaluate(&self, point: &Self::Point, out: &mut Self::Outcome) -> Result<(), ImpactError>;
+    /// Reads column `column` off a block's `outcomes` into `cells`, one cell
+    /// per outcome (including outcomes of points without an answer, whose
+    /// cells are not shown).
+    fn read(&self, column: usize, outcomes: &[Self::Outcome], cells: &mut [Cell]);
 }
+
+/// Points evaluated before their columns are read: enough that a column is
+/// read in one loop, few enough that the block's outcomes and cells stay in
+/// the first levels of cache.
+const BLOCK: usize = 128;
 
 /// One axis: the input it sets and its values.
 #[derive(Debug, Clone, PartialEq)]
@@ -182,27 +193,55 @@ impl<C: SweepCase> Sweep<C> {
         if start >= end {
             return;
         }
-        let range = start..end;
+        let (axes, columns) = (self.axes.len(), self.case.columns());
         let lens = self.axes.iter().map(|a| a.values.len()).collect();
-        let mut odometer = Odometer::at(lens, self.combine, range.start);
-        let mut values = vec![0.0; self.axes.len()];
-        let mut cells = vec![Cell::Number(0.0); self.case.columns()];
+        let mut odometer = Odometer::at(lens, self.combine, start);
+        // One block's points: axis values and digits point by point, outcomes,
+        // and the cells column by column.
+        let mut values = vec![0.0; BLOCK * axes];
+        let mut digits = vec![0; BLOCK * axes];
+        // On the heap: a block of outcomes in space is tens of kilobytes.
+        #[allow(clippy::useless_vec)]
+        let mut outcomes = vec![C::Outcome::default(); BLOCK];
+        let mut results = Vec::with_capacity(BLOCK);
+        let mut cells = vec![Cell::Number(0.0); BLOCK * columns];
+        let mut row = vec![Cell::Number(0.0); columns];
+        let mut current = vec![0.0; axes];
         let mut point = self.base;
         let mut changed = 0;
-        for index in range.start..end {
-            for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
-                let v = a.values.value(digit);
-                values[axis] = v;
-                C::set(&mut point, a.param, v);
+        let mut block_start = start;
+        while block_start < end {
+            let n = (end - block_start).min(BLOCK as u64) as usize;
+            results.clear();
+            for k in 0..n {
+                for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
+                    let v = a.values.value(digit);
+                    current[axis] = v;
+                    C::set(&mut point, a.param, v);
+                }
+                values[k * axes..(k + 1) * axes].copy_from_slice(&current);
+                digits[k * axes..(k + 1) * axes].copy_from_slice(odometer.digits());
+                results.push(self.case.evaluate(&point, &mut outcomes[k]));
+                changed = odometer.advance();
             }
-            let outcome = self.case.evaluate(&point, &mut cells);
-            visit(Row {
-                index,
-                axis_values: &values,
-                axis_indices: odometer.digits(),
-                outcome: outcome.as_ref().map(|()| &cells[..]),
-            });
-            changed = odometer.advance();
+            for column in 0..columns {
+                let cells = &mut cells[column * BLOCK..column * BLOCK + n];
+                self.case.read(column, &outcomes[..n], cells);
+            }
+            for (k, result) in results.iter().enumerate() {
+                if result.is_ok() {
+                    for (column, cell) in row.iter_mut().enumerate() {
+                        *cell = cells[column * BLOCK + k];
+                    }
+                }
+                visit(Row {
+                    index: block_start + k as u64,
+                    axis_values: &values[k * axes..(k + 1) * axes],
+                    axis_indices: &digits[k * axes..(k + 1) * axes],
+                    outcome: result.as_ref().map(|()| &row[..]),
+                });
+            }
+            block_start += n as u64;
         }
     }
 
@@ -285,20 +324,26 @@ mod tests {
     impl SweepCase for Sum {
         type Point = [f64; 2];
         type Param = usize;
+        type Outcome = f64;
         fn set(point: &mut [f64; 2], param: usize, value: f64) {
             point[param] = value;
         }
         fn columns(&self) -> usize {
             1
         }
-        fn evaluate(&self, p: &[f64; 2], cells: &mut [Cell]) -> Result<(), ImpactError> {
+        fn evaluate(&self, p: &[f64; 2], out: &mut f64) -> Result<(), ImpactError> {
             if p[0] + p[1] < 0.0 {
                 return Err(ImpactError::NotFinite {
                     input: crate::error::Input::Mass,
                 });
             }
-            cells[0] = Cell::Number(p[0] + p[1]);
+            *out = p[0] + p[1];
             Ok(())
+        }
+        fn read(&self, _: usize, outcomes: &[f64], cells: &mut [Cell]) {
+            for (&x, cell) in outcomes.iter().zip(cells) {
+                *cell = Cell::Number(x);
+            }
         }
     }
 
