@@ -87,7 +87,6 @@ static FILES: LazyLock<Vec<Asset>> = LazyLock::new(|| {
         file("fit.js", JS, include_str!("web/fit.js")),
         file("share.js", JS, include_str!("web/share.js")),
         file("api.js", JS, include_str!("web/api.js")),
-        file("plot.js", JS, include_str!("web/plot.js")),
         file("favicon.svg", SVG, include_str!("web/favicon.svg")),
         Asset::new("presets.json", JSON, presets().to_string().into_bytes()),
         Asset::new(

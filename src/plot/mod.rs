@@ -1,6 +1,7 @@
 //! SVG figures: lines, markers and shaded bands on linear or logarithmic axes,
-//! written as SVG text directly. [`Figure`] draws the service's sweep plots
-//! (`image/svg+xml` from `/v1/sweeps`), the validation report's model curves
+//! written as SVG text directly. [`Figure`] draws the service's plots
+//! (`image/svg+xml` from `/v1/sweeps` and the tangential and torsional fits,
+//! which the explorer inlines), the validation report's model curves
 //! over measured points (`docs/validation/`) and the accuracy report's plot
 //! (`docs/accuracy.svg`).
 //!

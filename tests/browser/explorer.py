@@ -619,7 +619,11 @@ def run(driver, base, axe_source, doc, shots, profile):
         driver.find_element(By.ID, "fit-run").click()
         wait(driver, lambda d: d.find_element(By.ID, "fit-status").text.startswith("Fitted")
              and d.find_element(By.ID, "fit-figure").is_displayed()
-             and d.find_elements(By.CSS_SELECTOR, "#fit-plot svg path"), f"the {kind} fit plot")
+             and d.find_elements(By.CSS_SELECTOR, "#fit-plot svg [data-part=curves] path"), f"the {kind} fit plot")
+        markers = driver.find_elements(By.CSS_SELECTOR, "#fit-plot svg [data-part=markers] circle")
+        check(f"the {kind} fit plot marks every measured row", len(markers) == len(
+            [l for l in driver.find_element(By.ID, "fit-csv").get_attribute("value").splitlines()[1:] if l.strip()]),
+            str(len(markers)))
         cells = driver.execute_script(
             "return Object.fromEntries([...document.querySelectorAll('#fit-table tbody tr')]"
             ".map(tr => [tr.querySelector('code').textContent, tr.querySelectorAll('td.num')[0].textContent]))")

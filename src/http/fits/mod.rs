@@ -1,15 +1,19 @@
 //! `POST /v1/fits/tangential`, `/v1/fits/torsional`, `/v1/fits/planar`
 //! (`planar.rs`) and `/v1/fits/spatial` (`spatial.rs`): coefficients
-//! identified from measured impacts (see [`crate::fit`]).
+//! identified from measured impacts (see [`crate::fit`]). The tangential and
+//! torsional fits also answer `image/svg+xml`: their points and fitted curve
+//! (`plot.rs`).
 
 mod planar;
+mod plot;
 mod spatial;
 
 pub use planar::*;
 pub use spatial::*;
 
 use axum::Json;
-use axum::http::StatusCode;
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -18,7 +22,7 @@ use utoipa_axum::routes;
 use super::dto::{ContactDto, RegimeDto, RigidBodyDto, TorsionalRegimeDto, VelocityDto};
 use super::extract::ApiJson;
 use super::impacts::TorsionalBodyDto;
-use super::problem::{ApiError, Problems};
+use super::problem::{ApiError, Problem, Problems};
 use crate::fit::{self, Estimate, FitError, Measured, Observation, TorsionalObservation};
 use crate::scene::Body;
 
@@ -99,16 +103,32 @@ pub struct TangentialFitResponse {
 }
 
 /// Identify e, f and e_t of the bilinear tangential model from measured impacts.
+///
+/// Formats by `Accept`: `application/json` (default; the coefficients) or
+/// `image/svg+xml` (V_ct/|v_cn| after against v_ct/|v_cn| before: the
+/// measured points and the fitted model's curve for the first observation's
+/// body; the points only, and a subtitle saying so, when f or e_t is not
+/// identified).
 #[utoipa::path(
     post,
     path = "/v1/fits/tangential",
     tag = "fits",
     request_body(content = TangentialFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted coefficients", body = TangentialFitResponse), Problems)
+    responses(
+        (status = 200, description = "The fitted coefficients, or their plot", content(
+            (TangentialFitResponse = "application/json"),
+            (String = "image/svg+xml"),
+        )),
+        (status = 406, description = "Neither application/json nor image/svg+xml is acceptable",
+         body = Problem, content_type = "application/problem+json"),
+        Problems
+    )
 )]
 pub async fn fits_tangential(
+    headers: HeaderMap,
     ApiJson(req): ApiJson<TangentialFitRequest>,
-) -> Result<Json<TangentialFitResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = plot::negotiate(&headers)?;
     let mut observations = Vec::with_capacity(req.observations.len());
     for (i, o) in req.observations.iter().enumerate() {
         let body = Body::new(o.body.mass, o.body.inertia).map_err(|e| {
@@ -128,6 +148,9 @@ pub async fn fits_tangential(
         });
     }
     let fit = fit::tangential(&observations).map_err(unfittable)?;
+    if format == plot::FitFormat::Svg {
+        return Ok(svg(plot::tangential(&observations, &fit)));
+    }
     Ok(Json(TangentialFitResponse {
         restitution: fit.restitution.into(),
         friction: fit.friction.map(Into::into),
@@ -139,7 +162,17 @@ pub async fn fits_tangential(
             .map(|r| r.is_finite().then_some(r))
             .collect(),
         r_squared: fit.r_squared.is_finite().then_some(fit.r_squared),
-    }))
+    })
+    .into_response())
+}
+
+/// An SVG answer.
+fn svg(text: String) -> Response {
+    (
+        [(header::CONTENT_TYPE, HeaderValue::from_static("image/svg+xml"))],
+        text,
+    )
+        .into_response()
 }
 
 /// Normal velocity and spin after a torsional impact.
@@ -217,16 +250,31 @@ fn unfittable(error: FitError) -> ApiError {
 }
 
 /// Identify e, e_z and μ_z of the torsional model from measured impacts.
+///
+/// Formats by `Accept`: `application/json` (default; the coefficients) or
+/// `image/svg+xml` (Ω_n/|v_n| after against ω_n/|v_n| before: the measured
+/// points and the fitted model's curve for the first observation's body; the
+/// points only, and a subtitle saying so, when μ_z is not identified).
 #[utoipa::path(
     post,
     path = "/v1/fits/torsional",
     tag = "fits",
     request_body(content = TorsionalFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted coefficients", body = TorsionalFitResponse), Problems)
+    responses(
+        (status = 200, description = "The fitted coefficients, or their plot", content(
+            (TorsionalFitResponse = "application/json"),
+            (String = "image/svg+xml"),
+        )),
+        (status = 406, description = "Neither application/json nor image/svg+xml is acceptable",
+         body = Problem, content_type = "application/problem+json"),
+        Problems
+    )
 )]
 pub async fn fits_torsional(
+    headers: HeaderMap,
     ApiJson(req): ApiJson<TorsionalFitRequest>,
-) -> Result<Json<TorsionalFitResponse>, ApiError> {
+) -> Result<Response, ApiError> {
+    let format = plot::negotiate(&headers)?;
     let observations: Vec<TorsionalObservation> = req
         .observations
         .iter()
@@ -241,6 +289,9 @@ pub async fn fits_torsional(
         })
         .collect();
     let fit = fit::torsional(&observations).map_err(unfittable)?;
+    if format == plot::FitFormat::Svg {
+        return Ok(svg(plot::torsional(&observations, &fit)));
+    }
     Ok(Json(TorsionalFitResponse {
         restitution: fit.restitution.into(),
         torsional_restitution: fit.torsional_restitution.into(),
@@ -258,7 +309,8 @@ pub async fn fits_torsional(
             .collect(),
         residuals: fit.residuals,
         r_squared: fit.r_squared.is_finite().then_some(fit.r_squared),
-    }))
+    })
+    .into_response())
 }
 
 /// A measured value with its standard uncertainty.

@@ -1,4 +1,4 @@
-//! `Accept` negotiation: which format a sweep is answered in.
+//! `Accept` negotiation: which format a sweep (or a fit) is answered in.
 
 use axum::http::{HeaderMap, StatusCode, header};
 
@@ -38,7 +38,34 @@ impl Format {
 /// Picks the format from `Accept`: the acceptable range with the highest
 /// quality wins; `*/*`, `application/*` or no header mean JSON.
 pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
-    let mut ranges: Vec<(f32, Format)> = Vec::new();
+    const OFFERED: &[(&str, Format)] = &[
+        ("application/json", Format::Json),
+        ("application/*", Format::Json),
+        ("*/*", Format::Json),
+        ("application/x-ndjson", Format::Ndjson),
+        ("application/jsonl", Format::Ndjson),
+        ("text/csv", Format::Csv),
+        ("text/*", Format::Csv),
+        ("image/svg+xml", Format::Svg),
+        ("image/*", Format::Svg),
+        ("application/vnd.apache.arrow.stream", Format::Arrow),
+    ];
+    choose(headers, OFFERED, Format::Json).ok_or_else(|| {
+        ApiError::new(
+            StatusCode::NOT_ACCEPTABLE,
+            "not-acceptable",
+            "Not acceptable",
+            "a sweep is available as application/json, application/x-ndjson, text/csv, \
+             application/vnd.apache.arrow.stream or image/svg+xml",
+        )
+    })
+}
+
+/// The format of the `offered` media range that `Accept` ranks highest (the
+/// first listed among equal qualities); `default` without an `Accept` range;
+/// `None` when no offered range is acceptable.
+pub(crate) fn choose<T: Copy>(headers: &HeaderMap, offered: &[(&str, T)], default: T) -> Option<T> {
+    let mut ranges: Vec<(f32, T)> = Vec::new();
     let mut any = false;
     for value in headers.get_all(header::ACCEPT) {
         let Ok(text) = value.to_str() else { continue };
@@ -53,13 +80,8 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
                 .filter_map(|p| p.trim().strip_prefix("q="))
                 .find_map(|q| q.trim().parse::<f32>().ok())
                 .unwrap_or(1.0);
-            let format = match range.as_str() {
-                "application/json" | "application/*" | "*/*" => Format::Json,
-                "application/x-ndjson" | "application/jsonl" => Format::Ndjson,
-                "text/csv" | "text/*" => Format::Csv,
-                "image/svg+xml" | "image/*" => Format::Svg,
-                "application/vnd.apache.arrow.stream" => Format::Arrow,
-                _ => continue,
+            let Some(&(_, format)) = offered.iter().find(|(r, _)| *r == range) else {
+                continue;
             };
             if quality > 0.0 {
                 ranges.push((quality, format));
@@ -67,17 +89,9 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
         }
     }
     if !any {
-        return Ok(Format::Json);
+        return Some(default);
     }
     // Stable: among equal qualities the first listed wins.
     ranges.sort_by(|a, b| b.0.total_cmp(&a.0));
-    ranges.first().map(|&(_, f)| f).ok_or_else(|| {
-        ApiError::new(
-            StatusCode::NOT_ACCEPTABLE,
-            "not-acceptable",
-            "Not acceptable",
-            "a sweep is available as application/json, application/x-ndjson, text/csv, \
-             application/vnd.apache.arrow.stream or image/svg+xml",
-        )
-    })
+    ranges.first().map(|&(_, f)| f)
 }

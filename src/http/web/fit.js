@@ -7,7 +7,6 @@ import { post, problemText } from './api.js';
 import { h, apiName, parseValue, setIn, showError, clearError } from './form.js';
 import { outputLabel } from './cases.js';
 import { copy, curl } from './share.js';
-import { chart } from './plot.js';
 
 const $ = (id) => document.getElementById(id);
 const XYZ = ['x', 'y', 'z'];
@@ -293,7 +292,7 @@ export class FitPanel {
     if (kindName === 'spatial') this.spatialTable(answer.body);
     else this.table(answer.body);
     $('fit-status').textContent = `Fitted ${built.rows ?? (built.request.observations || built.request.measured).length} rows.`;
-    await this.draw(kindName, built.request, answer.body);
+    await this.draw(kindName, built.request);
   }
 
   table(fit) {
@@ -352,68 +351,28 @@ export class FitPanel {
     $('fit-table').hidden = false;
   }
 
-  // The fitted model over the points, in the paper's normalised axes
-  // (velocities over the approach speed, for the first row's body: the
-  // model is homogeneous in the velocities).
-  async draw(kindName, request, fit) {
+  // The service's own plot of the fit (image/svg+xml from the fit
+  // endpoint), inlined as the sweep's is: the measured points and the fitted
+  // model, velocities over the approach speed, for the first row's body.
+  async draw(kindName, request) {
     const figure = $('fit-figure');
     if (kindName === 'planar' || kindName === 'spatial') { figure.hidden = true; return; }
-    const obs = request.observations;
-    const o0 = obs[0];
-    let points;
-    let sweep;
-    let xLabel;
-    let yLabel;
-    if (kindName === 'tangential') {
-      points = obs.map((o) => {
-        const dc = o.contact?.tangential_offset ?? 0; const dd = o.contact?.normal_offset ?? 0;
-        const vcn = o.initial.normal + dc * (o.initial.angular ?? 0);
-        const vct = (o.initial.tangential ?? 0) - dd * (o.initial.angular ?? 0);
-        const Vct = (o.final.tangential ?? 0) - dd * (o.final.angular ?? 0);
-        return [vct / Math.abs(vcn), Vct / Math.abs(vcn)];
-      });
-      const xs = points.map((p) => p[0]);
-      if (fit.friction && fit.tangential_restitution) {
-        sweep = {
-          case: 'tangential',
-          base: { body: o0.body, contact: o0.contact, velocity: { normal: -1, tangential: 0, angular: 0 },
-            restitution: fit.restitution.value, friction: Math.max(fit.friction.value, 0), tangential_restitution: Math.min(Math.max(fit.tangential_restitution.value, -1), 1) },
-          axes: [{ path: '/velocity/tangential', linspace: { start: Math.min(...xs), stop: Math.max(...xs), count: 201 } }],
-          outputs: ['/contact_velocity/final/tangential'],
-        };
-      }
-      xLabel = 'v_ct / |v_cn| (before)';
-      yLabel = 'V_ct / |v_cn| (after)';
-    } else {
-      points = obs.map((o) => [o.initial.spin / Math.abs(o.initial.normal), o.final.spin / Math.abs(o.initial.normal)]);
-      const xs = points.map((p) => p[0]);
-      if (fit.torsional_friction) {
-        sweep = {
-          case: 'torsional',
-          base: { body: o0.body, velocity: { normal: -1, spin: 0 }, restitution: Math.min(Math.max(fit.restitution.value, 0), 1),
-            torsion: { restitution: Math.min(Math.max(fit.torsional_restitution.value, 0), 1), friction: Math.max(fit.torsional_friction.value, 0), pitch_radius: o0.pitch_radius } },
-          axes: [{ path: '/velocity/spin', linspace: { start: Math.min(...xs), stop: Math.max(...xs), count: 201 } }],
-          outputs: ['/final_velocity/spin'],
-        };
-      }
-      xLabel = 'ω_n / |v_n| (before)';
-      yLabel = 'Ω_n / |v_n| (after)';
+    const answer = await post(this.kind().endpoint, request, { accept: 'image/svg+xml' });
+    const svg = answer.ok ? new DOMParser().parseFromString(answer.body, 'image/svg+xml').documentElement : null;
+    if (!svg || svg.nodeName !== 'svg') {
+      figure.hidden = true;
+      $('fit-status').textContent += answer.ok ? ' The plot could not be read.' : ` The plot could not be drawn: ${problemText(answer.problem)}.`;
+      return;
     }
-    const series = [{ label: 'measured', kind: 'points', points, color: '#1f5fbf' }];
-    let note = '';
-    if (sweep) {
-      const line = await post('/v1/sweeps', sweep);
-      if (line.ok) {
-        series.push({ label: 'fitted model', kind: 'line', points: line.body.rows.map((r) => [r[0], r[1]]), color: '#b54a00' });
-      } else {
-        note = ` The fitted line could not be drawn: ${problemText(line.problem)}.`;
-      }
-    } else {
-      note = ' Not every coefficient was identified, so no line is drawn.';
-    }
-    const svg = chart({ title: `${kindName} fit: measured points and the fitted model`, xLabel, yLabel, series });
-    $('fit-plot').replaceChildren(svg);
-    $('fit-caption').textContent = `Normalised by the approach speed, for the first row's body; the line is the service's sweep of the fitted model.${note}`;
+    svg.querySelectorAll('script, foreignObject').forEach((el) => el.remove());
+    const node = document.importNode(svg, true);
+    const title = node.querySelector('title')?.textContent || `${kindName} fit`;
+    node.setAttribute('role', 'img');
+    node.setAttribute('aria-label', title);
+    node.removeAttribute('width');
+    node.removeAttribute('height');
+    $('fit-plot').replaceChildren(node);
+    $('fit-caption').textContent = `${title}. The service's own plot (image/svg+xml).`;
     figure.hidden = false;
   }
 
