@@ -197,13 +197,15 @@ impl<C: SweepCase> Sweep<C> {
         let lens = self.axes.iter().map(|a| a.values.len()).collect();
         let mut odometer = Odometer::at(lens, self.combine, start);
         // One block's points: axis values and digits point by point, outcomes,
-        // and the cells column by column.
+        // the refusals (rare: only they are kept, not a result per point, whose
+        // copies through the stack cost more than a small model), and the
+        // cells column by column.
         let mut values = vec![0.0; BLOCK * axes];
         let mut digits = vec![0; BLOCK * axes];
         // On the heap: a block of outcomes in space is tens of kilobytes.
         #[allow(clippy::useless_vec)]
         let mut outcomes = vec![C::Outcome::default(); BLOCK];
-        let mut results = Vec::with_capacity(BLOCK);
+        let mut refusals: Vec<(usize, ImpactError)> = Vec::with_capacity(BLOCK);
         let mut cells = vec![Cell::Number(0.0); BLOCK * columns];
         let mut row = vec![Cell::Number(0.0); columns];
         let mut current = vec![0.0; axes];
@@ -212,7 +214,7 @@ impl<C: SweepCase> Sweep<C> {
         let mut block_start = start;
         while block_start < end {
             let n = (end - block_start).min(BLOCK as u64) as usize;
-            results.clear();
+            refusals.clear();
             for k in 0..n {
                 for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
                     let v = a.values.value(digit);
@@ -221,24 +223,31 @@ impl<C: SweepCase> Sweep<C> {
                 }
                 values[k * axes..(k + 1) * axes].copy_from_slice(&current);
                 digits[k * axes..(k + 1) * axes].copy_from_slice(odometer.digits());
-                results.push(self.case.evaluate(&point, &mut outcomes[k]));
+                if let Err(e) = self.case.evaluate(&point, &mut outcomes[k]) {
+                    refusals.push((k, e));
+                }
                 changed = odometer.advance();
             }
             for column in 0..columns {
                 let cells = &mut cells[column * BLOCK..column * BLOCK + n];
                 self.case.read(column, &outcomes[..n], cells);
             }
-            for (k, result) in results.iter().enumerate() {
-                if result.is_ok() {
-                    for (column, cell) in row.iter_mut().enumerate() {
-                        *cell = cells[column * BLOCK + k];
+            let mut refused = refusals.iter().peekable();
+            for k in 0..n {
+                let outcome = match refused.next_if(|(i, _)| *i == k) {
+                    Some((_, e)) => Err(e),
+                    None => {
+                        for (column, cell) in row.iter_mut().enumerate() {
+                            *cell = cells[column * BLOCK + k];
+                        }
+                        Ok(&row[..])
                     }
-                }
+                };
                 visit(Row {
                     index: block_start + k as u64,
                     axis_values: &values[k * axes..(k + 1) * axes],
                     axis_indices: &digits[k * axes..(k + 1) * axes],
-                    outcome: result.as_ref().map(|()| &row[..]),
+                    outcome,
                 });
             }
             block_start += n as u64;
