@@ -267,6 +267,62 @@ def cross_check(binary):
     return agree
 
 
+def time_service(binary, repetitions, points_per_sweep, requests):
+    """The service's own sweep of a grid, one thread: ``restitution sweep --format arrow``
+    to /dev/null with RAYON_NUM_THREADS=1, best of N wall-clock seconds, minus the best of
+    N of the same command on one point of the grid (start-up, parsing, the Arrow schema).
+    ``requests``: the request bodies for "all outputs", "one output" and "point"."""
+    env = dict(os.environ, RAYON_NUM_THREADS="1")
+
+    def best(path):
+        seconds = []
+        for _ in range(repetitions + 1):
+            start = time.perf_counter()
+            subprocess.run([binary, "sweep", "--request", path, "--format", "arrow"], check=True,
+                           stdout=subprocess.DEVNULL, env=env, timeout=300)
+            seconds.append(time.perf_counter() - start)
+        return min(seconds[1:])
+
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = {}
+        for index, (name, body) in enumerate(requests.items()):
+            paths[name] = os.path.join(tmp, f"{index}.json")
+            with open(paths[name], "w") as file:
+                json.dump(body, file)
+        start_up = best(paths["point"])
+        print(f"service: {binary} sweep --format arrow > /dev/null, RAYON_NUM_THREADS=1, best of "
+              f"{repetitions}, minus one point's run ({start_up * 1e3:.2f} ms)")
+        for label in ["all outputs", "one output"]:
+            seconds = best(paths[label]) - start_up
+            print(f"{label}: {points_per_sweep / seconds / 1e6:.2f} M points/s best ({seconds * 1e3:.2f} ms)")
+
+
+def peer_main(description, variants, points_per_sweep, grid, requests, cross_check, tolerance_ulps):
+    """A grid peer's command line: times ``variants`` (numpy) on ``grid``, or with
+    --time-service the service's sweep of ``requests()``, then checks the peer against
+    the service with ``cross_check`` unless --no-check. Returns the exit status."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("binary", nargs="?", default="target/release/restitution")
+    parser.add_argument("--repetitions", type=int, default=20)
+    parser.add_argument("--no-check", action="store_true")
+    parser.add_argument("--time-service", action="store_true",
+                        help="time the service's sweep of the grid instead of numpy")
+    args = parser.parse_args()
+    if args.time_service:
+        time_service(args.binary, args.repetitions, points_per_sweep, requests())
+        return 0
+    print(f"numpy {np.__version__}, python {sys.version.split()[0]}, {points_per_sweep} points, "
+          f"best of {args.repetitions}, one thread")
+    print_rates(variants, points_per_sweep, args.repetitions, inputs=grid, digits=2)
+    if args.no_check:
+        return 0
+    if not cross_check(args.binary):
+        print("FAIL: numpy and the service disagree")
+        return 1
+    print(f"OK: numpy agrees with the service within {tolerance_ulps} ulps of each column's largest magnitude")
+    return 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("binary", nargs="?", default="target/release/restitution",

@@ -56,13 +56,11 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
              "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS"):
     os.environ[_var] = "1"
 
-import argparse  # noqa: E402
 import csv  # noqa: E402
 import json  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
-import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -313,58 +311,13 @@ def cross_check(binary):
     return agree
 
 
-def time_service(binary, repetitions):
-    """The service's own sweep on the grid, one thread: ``restitution sweep --format arrow``
-    to /dev/null with RAYON_NUM_THREADS=1, best of N wall-clock seconds, minus the best of
-    N of the same command on one point of the grid (start-up, parsing, the Arrow schema)."""
-    env = dict(os.environ, RAYON_NUM_THREADS="1")
-
-    def best(path):
-        seconds = []
-        for _ in range(repetitions + 1):
-            start = time.perf_counter()
-            subprocess.run([binary, "sweep", "--request", path, "--format", "arrow"], check=True,
-                           stdout=subprocess.DEVNULL, env=env, timeout=300)
-            seconds.append(time.perf_counter() - start)
-        return min(seconds[1:])
-
-    with tempfile.TemporaryDirectory() as tmp:
-        paths = {}
-        for name, body in [("all", request()), ("one", request([ONE_OUTPUT])),
-                           ("point", request(one_point=True))]:
-            paths[name] = os.path.join(tmp, f"{name}.json")
-            with open(paths[name], "w") as file:
-                json.dump(body, file)
-        start_up = best(paths["point"])
-        print(f"service: {binary} sweep --format arrow > /dev/null, RAYON_NUM_THREADS=1, best of "
-              f"{repetitions}, minus one point's run ({start_up * 1e3:.2f} ms)")
-        for label, name in [("all outputs", "all"), ("one output", "one")]:
-            seconds = best(paths[name]) - start_up
-            print(f"{label}: {POINTS / seconds / 1e6:.2f} M points/s best ({seconds * 1e3:.2f} ms)")
-
-
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("binary", nargs="?", default="target/release/restitution")
-    parser.add_argument("--repetitions", type=int, default=20)
-    parser.add_argument("--no-check", action="store_true")
-    parser.add_argument("--time-service", action="store_true",
-                        help="time the service's sweep of the grid instead of numpy")
-    args = parser.parse_args()
-    if args.time_service:
-        time_service(args.binary, args.repetitions)
-        return 0
-    print(f"numpy {np.__version__}, python {sys.version.split()[0]}, {POINTS} points, "
-          f"best of {args.repetitions}, one thread")
-    numpy_peer.print_rates([("all outputs", spatial_coulomb), ("one output", final_slip_along_the_shot)],
-                           POINTS, args.repetitions, inputs=grid, digits=2)
-    if args.no_check:
-        return 0
-    if not cross_check(args.binary):
-        print("FAIL: numpy and the service disagree")
-        return 1
-    print(f"OK: numpy agrees with the service within {TOLERANCE_ULPS} ulps of each column's largest magnitude")
-    return 0
+    def requests():
+        return {"all outputs": request(), "one output": request([ONE_OUTPUT]),
+                "point": request(one_point=True)}
+
+    return numpy_peer.peer_main(__doc__.splitlines()[0], [("all outputs", spatial_coulomb), ("one output", final_slip_along_the_shot)],
+                                POINTS, grid, requests, cross_check, TOLERANCE_ULPS)
 
 
 if __name__ == "__main__":
