@@ -75,6 +75,15 @@ pub struct PlanarContactDto {
     pub normal: VectorDto,
 }
 
+impl From<PlanarContactDto> for PlanarContact {
+    fn from(c: PlanarContactDto) -> Self {
+        PlanarContact {
+            point: c.point.into(),
+            normal: c.normal.into(),
+        }
+    }
+}
+
 /// One point contact between two laminae, or one and a fixed barrier, in
 /// world axes: `restitution` (or `kinetic_restitution`) and at most one
 /// tangential law (`friction`; `impulse_ratio`; `tangential_restitution`
@@ -151,10 +160,7 @@ impl TryFrom<&PlanarContactRequest> for BodiesImpact {
         Ok(BodiesImpact {
             a: a.into(),
             b: b.map(Into::into),
-            contact: PlanarContact {
-                point: req.contact.point.into(),
-                normal: req.contact.normal.into(),
-            },
+            contact: req.contact.into(),
             law: req.law()?,
         })
     }

@@ -81,6 +81,15 @@ pub struct SpatialContactDto {
     pub normal: Vector3Dto,
 }
 
+impl From<SpatialContactDto> for SpatialContact {
+    fn from(c: SpatialContactDto) -> Self {
+        SpatialContact {
+            point: c.point.into(),
+            normal: c.normal.into(),
+        }
+    }
+}
+
 /// The twist law about the normal (section 4 generalised).
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -156,10 +165,7 @@ impl TryFrom<&SpatialContactRequest> for SpatialImpact {
         Ok(SpatialImpact {
             a,
             b,
-            contact: SpatialContact {
-                point: req.contact.point.into(),
-                normal: req.contact.normal.into(),
-            },
+            contact: req.contact.into(),
             law: law_of(
                 req.restitution,
                 req.kinetic_restitution,
