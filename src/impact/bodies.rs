@@ -3,7 +3,8 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, approach_bound, approaches, evaluate_contact};
+use super::approach::{approach_bound, approaches};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};

@@ -46,6 +46,7 @@ macro_rules! reads {
     };
 }
 
+mod approach;
 mod bodies;
 mod planar;
 mod spatial;
@@ -371,35 +372,6 @@ pub(crate) fn evaluate_contact<T>(
         other => other,
     };
     evaluate(arithmetic, in_range && certain, scales, bounds, model, out)
-}
-
-/// Whether a contact approaches (`u·n < 0`), decided exactly: by the f64
-/// value `fast` where it lies farther from zero than its error bound
-/// `bound()`, else by the `exact` value. Returns the decision and whether
-/// the f64 value made it (the `certain` of [`evaluate_contact`]).
-pub(crate) fn approaches(
-    fast: f64,
-    bound: impl FnOnce() -> f64,
-    exact: impl FnOnce() -> crate::arith::Fraction,
-) -> (bool, bool) {
-    let certain = fast.is_finite() && fast.abs() > bound();
-    let approaching = if certain {
-        fast < 0.0
-    } else {
-        crate::arith::Field::sign(&exact()) == Ok(std::cmp::Ordering::Less)
-    };
-    (approaching, certain)
-}
-
-/// The error bound of an f64 approach velocity: `ulps` roundings of `terms`,
-/// the sum of the magnitudes of the terms it combines; `∞` where they leave
-/// the normal range.
-pub(crate) fn approach_bound(terms: f64, ulps: f64) -> f64 {
-    if terms.is_finite() && terms > 2f64.powi(-900) {
-        ulps * f64::EPSILON * terms
-    } else {
-        f64::INFINITY
-    }
 }
 
 /// How tight the static error bounds (`λ u M` of `fast`'s

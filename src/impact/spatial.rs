@@ -4,7 +4,8 @@
 
 use std::cmp::Ordering;
 
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, approach_bound, approaches, evaluate_contact};
+use super::approach::{approach_bound, approaches};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
