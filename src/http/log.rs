@@ -332,39 +332,25 @@ fn format_access(buffer: &mut Vec<u8>, record: &AccessRecord, ansi: bool) {
         Level::DEBUG => (b"DEBUG", b"\x1b[34m"),
         Level::TRACE => (b"TRACE", b"\x1b[35m"),
     };
-    if ansi {
-        buffer.extend_from_slice(colour);
-        buffer.extend_from_slice(level);
-        buffer.extend_from_slice(RESET);
-    } else {
-        buffer.extend_from_slice(level);
-    }
+    // `text`, in `style` (then reset) when the output takes ANSI colours.
+    let styled = |buffer: &mut Vec<u8>, style: &[u8], text: &[u8]| {
+        if ansi {
+            buffer.extend_from_slice(style);
+            buffer.extend_from_slice(text);
+            buffer.extend_from_slice(RESET);
+        } else {
+            buffer.extend_from_slice(text);
+        }
+    };
+    styled(buffer, colour, level);
     buffer.push(b' ');
-    if ansi {
-        buffer.extend_from_slice(DIM);
-        buffer.extend_from_slice(ACCESS_TARGET.as_bytes());
-        buffer.extend_from_slice(RESET);
-        buffer.extend_from_slice(DIM);
-        buffer.push(b':');
-        buffer.extend_from_slice(RESET);
-    } else {
-        buffer.extend_from_slice(ACCESS_TARGET.as_bytes());
-        buffer.push(b':');
-    }
+    styled(buffer, DIM, ACCESS_TARGET.as_bytes());
+    styled(buffer, DIM, b":");
     buffer.extend_from_slice(b" request");
     let field = |buffer: &mut Vec<u8>, name: &str| {
         buffer.push(b' ');
-        if ansi {
-            buffer.extend_from_slice(ITALIC);
-            buffer.extend_from_slice(name.as_bytes());
-            buffer.extend_from_slice(RESET);
-            buffer.extend_from_slice(DIM);
-            buffer.push(b'=');
-            buffer.extend_from_slice(RESET);
-        } else {
-            buffer.extend_from_slice(name.as_bytes());
-            buffer.push(b'=');
-        }
+        styled(buffer, ITALIC, name.as_bytes());
+        styled(buffer, DIM, b"=");
     };
     field(buffer, "request_id");
     buffer.extend_from_slice(record.request_id.bytes());

@@ -3,6 +3,7 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
+use super::approach::{approach_bound, approaches};
 use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
@@ -74,13 +75,11 @@ impl BodiesImpact {
             return Err(ImpactError::ZeroVector { input: Input::Normal });
         }
         let law = self.law.validate_planar()?;
-        let fast = approach::<f64>(self);
-        let certain = fast.is_finite() && fast.abs() > self.approach_error_bound();
-        let approaching = if certain {
-            fast < 0.0
-        } else {
-            approach::<Fraction>(self).sign() == Ok(std::cmp::Ordering::Less)
-        };
+        let (approaching, certain) = approaches(
+            approach::<f64>(self),
+            || self.approach_error_bound(),
+            || approach::<Fraction>(self),
+        );
         if !approaching {
             let nn = self.contact.normal[0].hypot(self.contact.normal[1]);
             return Err(ImpactError::NotApproaching {
@@ -107,11 +106,7 @@ impl BodiesImpact {
                     + w * (cx.abs() + l.position[0].abs()) * ny.abs()
             })
             .sum();
-        if terms.is_finite() && terms > 2f64.powi(-900) {
-            16.0 * f64::EPSILON * terms
-        } else {
-            f64::INFINITY
-        }
+        approach_bound(terms, 16.0)
     }
 }
 

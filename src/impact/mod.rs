@@ -46,6 +46,7 @@ macro_rules! reads {
     };
 }
 
+mod approach;
 mod bodies;
 mod planar;
 mod spatial;

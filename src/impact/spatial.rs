@@ -4,6 +4,7 @@
 
 use std::cmp::Ordering;
 
+use super::approach::{approach_bound, approaches};
 use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
@@ -196,12 +197,11 @@ impl SpatialImpact {
             twist.validate()?;
         }
         let fast = approach::<f64>(self);
-        let certain = fast.is_finite() && fast.abs() > self.approach_error_bound();
-        let approaching = if certain {
-            fast < 0.0
-        } else {
-            approach::<Fraction>(self).sign() == Ok(Ordering::Less)
-        };
+        let (approaching, certain) = approaches(
+            fast,
+            || self.approach_error_bound(),
+            || approach::<Fraction>(self),
+        );
         if !approaching {
             let size = self.contact.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
             let along = if certain {
@@ -237,11 +237,7 @@ impl SpatialImpact {
                     .sum::<f64>()
             })
             .sum();
-        if terms.is_finite() && terms > 2f64.powi(-900) {
-            32.0 * f64::EPSILON * terms
-        } else {
-            f64::INFINITY
-        }
+        approach_bound(terms, 32.0)
     }
 }
 

@@ -144,10 +144,7 @@ pub async fn fits_planar(
         ));
     }
     let bodies: Vec<Lamina> = req.bodies.iter().map(|&b| b.into()).collect();
-    let contact = PlanarContact {
-        point: req.contact.point.into(),
-        normal: req.contact.normal.into(),
-    };
+    let contact = PlanarContact::from(req.contact);
     let measured: Vec<MeasuredChange> = req
         .measured
         .iter()

@@ -12,7 +12,7 @@ use crate::http::dto::{RegimeDto, TorsionalRegimeDto};
 use crate::http::extract::ApiJson;
 use crate::http::impacts::spatial::{SpatialBodyDto, SpatialContactDto};
 use crate::http::problem::{ApiError, Problems};
-use crate::impact::{Law, SpatialContact};
+use crate::impact::Law;
 
 /// The law whose coefficients are fitted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
@@ -270,10 +270,7 @@ pub async fn fits_spatial(
         observations.push(SpatialObservation {
             a: bodies[0],
             b: bodies.get(1).copied(),
-            contact: SpatialContact {
-                point: impact.contact.point.into(),
-                normal: impact.contact.normal.into(),
-            },
+            contact: impact.contact.into(),
             measured: impact
                 .measured
                 .iter()

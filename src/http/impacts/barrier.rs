@@ -250,7 +250,7 @@ pub async fn impacts_tangential(
 mod tests {
     use serde_json::{Value as Json, json};
 
-    use super::super::wire_check::{inputs_resolve, outputs_resolve};
+    use super::super::wire_check::{paths_resolve, with_law};
     use super::*;
 
     fn body() -> Json {
@@ -283,10 +283,10 @@ mod tests {
             json!({"restitution": 0.93, "impulse_ratio": -0.05}),
             json!({"kinetic_restitution": {"value": 0.9, "approach_impulse_ratio": -0.05, "rebound_impulse_ratio": -0.04}}),
         ] {
-            let mut r = json!({"body": body(), "contact": contact(), "velocity": velocity()});
-            r.as_object_mut()
-                .unwrap()
-                .extend(law.as_object().unwrap().clone());
+            let r = with_law(
+                json!({"body": body(), "contact": contact(), "velocity": velocity()}),
+                &law,
+            );
             let req: ObliqueRequest = serde_json::from_value(r.clone()).unwrap();
             impacts.push((r, PlanarImpact::try_from(&req).unwrap()));
         }
@@ -295,13 +295,7 @@ mod tests {
         let req: TangentialRequest = serde_json::from_value(r.clone()).unwrap();
         impacts.push((r, PlanarImpact::from(&req)));
         for (request, impact) in &impacts {
-            inputs_resolve(request, impact);
-            for precision in [Precision::Fast, Precision::Exact] {
-                let outcome = solve(impact, Outputs::ALL, precision).unwrap();
-                let response =
-                    serde_json::to_value(PlanarResponse::from_outcome(&outcome, precision)).unwrap();
-                outputs_resolve(&response, impact, &outcome);
-            }
+            paths_resolve(request, impact, PlanarResponse::from_outcome);
         }
     }
 }

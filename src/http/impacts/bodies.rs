@@ -75,6 +75,15 @@ pub struct PlanarContactDto {
     pub normal: VectorDto,
 }
 
+impl From<PlanarContactDto> for PlanarContact {
+    fn from(c: PlanarContactDto) -> Self {
+        PlanarContact {
+            point: c.point.into(),
+            normal: c.normal.into(),
+        }
+    }
+}
+
 /// One point contact between two laminae, or one and a fixed barrier, in
 /// world axes: `restitution` (or `kinetic_restitution`) and at most one
 /// tangential law (`friction`; `impulse_ratio`; `tangential_restitution`
@@ -151,10 +160,7 @@ impl TryFrom<&PlanarContactRequest> for BodiesImpact {
         Ok(BodiesImpact {
             a: a.into(),
             b: b.map(Into::into),
-            contact: PlanarContact {
-                point: req.contact.point.into(),
-                normal: req.contact.normal.into(),
-            },
+            contact: req.contact.into(),
             law: req.law()?,
         })
     }
@@ -300,7 +306,7 @@ pub async fn impacts_planar(
 mod tests {
     use serde_json::{Value as Json, json};
 
-    use super::super::wire_check::{inputs_resolve, outputs_resolve};
+    use super::super::wire_check::{paths_resolve, with_law};
     use super::*;
 
     fn request(bodies: usize, law: Json) -> Json {
@@ -309,14 +315,11 @@ mod tests {
                    "velocity": {"x": vx, "y": 0.75}, "angular_velocity": 1.25})
         };
         let all = [lamina(0.0, 3.0), lamina(2.0, -1.0)];
-        let mut r = json!({
+        let scene = json!({
             "bodies": all[..bodies].to_vec(),
             "contact": {"point": {"x": 1.0, "y": 0.5}, "normal": {"x": -2.0, "y": 0.5}},
         });
-        r.as_object_mut()
-            .unwrap()
-            .extend(law.as_object().unwrap().clone());
-        r
+        with_law(scene, &law)
     }
 
     #[test]
@@ -332,14 +335,7 @@ mod tests {
                 let r = request(bodies, law);
                 let req: PlanarContactRequest = serde_json::from_value(r.clone()).unwrap();
                 let impact = BodiesImpact::try_from(&req).unwrap();
-                inputs_resolve(&r, &impact);
-                for precision in [Precision::Fast, Precision::Exact] {
-                    let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
-                    let response =
-                        serde_json::to_value(PlanarContactResponse::from_outcome(&outcome, precision))
-                            .unwrap();
-                    outputs_resolve(&response, &impact, &outcome);
-                }
+                paths_resolve(&r, &impact, PlanarContactResponse::from_outcome);
             }
         }
     }

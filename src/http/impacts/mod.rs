@@ -37,10 +37,36 @@ pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
 /// response's members sit at the paths the solver's declarations give.
 #[cfg(test)]
 pub(crate) mod wire_check {
+    use serde::Serialize;
     use serde_json::Value as Json;
 
-    use crate::impact::Case;
+    use crate::impact::{Case, Precision, solve};
+    use crate::outcome::Outputs;
     use crate::quantity::Value;
+
+    /// `request` with the members of `law` added: a case's scene under one law.
+    pub fn with_law(mut request: Json, law: &Json) -> Json {
+        request
+            .as_object_mut()
+            .unwrap()
+            .extend(law.as_object().unwrap().clone());
+        request
+    }
+
+    /// [`inputs_resolve`], then [`outputs_resolve`] for the impact solved in
+    /// each precision, `response` mapping its outcome to the wire type.
+    pub fn paths_resolve<C: Case, R: Serialize>(
+        request: &Json,
+        impact: &C,
+        response: impl Fn(&C::Outcome, Precision) -> R,
+    ) {
+        inputs_resolve(request, impact);
+        for precision in [Precision::Fast, Precision::Exact] {
+            let outcome = solve(impact, Outputs::ALL, precision).unwrap();
+            let answer = serde_json::to_value(response(&outcome, precision)).unwrap();
+            outputs_resolve(&answer, impact, &outcome);
+        }
+    }
 
     /// Every input a request's impact reads sits at its path in the request,
     /// with the value the impact reads.

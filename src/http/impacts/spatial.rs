@@ -81,6 +81,15 @@ pub struct SpatialContactDto {
     pub normal: Vector3Dto,
 }
 
+impl From<SpatialContactDto> for SpatialContact {
+    fn from(c: SpatialContactDto) -> Self {
+        SpatialContact {
+            point: c.point.into(),
+            normal: c.normal.into(),
+        }
+    }
+}
+
 /// The twist law about the normal (section 4 generalised).
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -156,10 +165,7 @@ impl TryFrom<&SpatialContactRequest> for SpatialImpact {
         Ok(SpatialImpact {
             a,
             b,
-            contact: SpatialContact {
-                point: req.contact.point.into(),
-                normal: req.contact.normal.into(),
-            },
+            contact: req.contact.into(),
             law: law_of(
                 req.restitution,
                 req.kinetic_restitution,
@@ -334,7 +340,7 @@ pub async fn impacts_spatial(
 mod tests {
     use serde_json::{Value as Json, json};
 
-    use super::super::wire_check::{inputs_resolve, outputs_resolve};
+    use super::super::wire_check::{paths_resolve, with_law};
     use super::*;
 
     fn request(bodies: usize, law: Json) -> Json {
@@ -344,14 +350,11 @@ mod tests {
                    "velocity": {"x": vx, "y": 0.75, "z": 0.5}, "angular_velocity": {"x": 1.25, "y": -2.0, "z": 3.0}})
         };
         let all = [body(0.0, 8.0), body(2.0, -1.0)];
-        let mut r = json!({
+        let scene = json!({
             "bodies": all[..bodies].to_vec(),
             "contact": {"point": {"x": 1.0, "y": 0.5, "z": 0.25}, "normal": {"x": -2.0, "y": 0.5, "z": 0.25}},
         });
-        r.as_object_mut()
-            .unwrap()
-            .extend(law.as_object().unwrap().clone());
-        r
+        with_law(scene, &law)
     }
 
     #[test]
@@ -369,14 +372,7 @@ mod tests {
                 let r = request(bodies, law);
                 let req: SpatialContactRequest = serde_json::from_value(r.clone()).unwrap();
                 let impact = SpatialImpact::try_from(&req).unwrap();
-                inputs_resolve(&r, &impact);
-                for precision in [Precision::Fast, Precision::Exact] {
-                    let outcome = solve(&impact, Outputs::ALL, precision).unwrap();
-                    let response =
-                        serde_json::to_value(SpatialContactResponse::from_outcome(&outcome, precision))
-                            .unwrap();
-                    outputs_resolve(&response, &impact, &outcome);
-                }
+                paths_resolve(&r, &impact, SpatialContactResponse::from_outcome);
             }
         }
     }

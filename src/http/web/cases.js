@@ -101,6 +101,16 @@ const rigid = (i) => {
 };
 
 const hasBodyB = (r) => Array.isArray(r?.bodies) && r.bodies.length > 1;
+// Body A, body B or a barrier, and the contact in world axes: the opening
+// parts of the two-body cases, `body(i)` being the fields of body i.
+const bodiesAndContact = (body, components) => [
+  group('Body A', body(0)),
+  toggle('body-b', 'Body B (unchecked: A hits a fixed barrier)', [group('Body B', body(1))], hasBodyB),
+  group('Contact', [
+    vector('/contact/point', 'C', 'm', 'contact point', components),
+    vector('/contact/normal', 'n', '', 'normal from B into A, any length', components),
+  ]),
+];
 
 export const CASES = [
   {
@@ -152,12 +162,7 @@ export const CASES = [
     id: 'planar', title: 'Planar, two bodies', endpoint: '/v1/impacts/planar', section: 'world axes',
     about: 'Two laminae, or one against a fixed barrier, in world axes; the normal n points from B (or the barrier) into A.',
     parts: [
-      group('Body A', lamina(0)),
-      toggle('body-b', 'Body B (unchecked: A hits a fixed barrier)', [group('Body B', lamina(1))], hasBodyB),
-      group('Contact', [
-        vector('/contact/point', 'C', 'm', 'contact point'),
-        vector('/contact/normal', 'n', '', 'normal from B into A, any length'),
-      ]),
+      ...bodiesAndContact(lamina),
       choice('law', 'Law', [
         { id: 'friction', label: 'friction f', parts: [restitution(), friction()] },
         { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed signed ratio P<sub>t</sub>/P<sub>n</sub> along t = ẑ × n')] },
@@ -172,12 +177,7 @@ export const CASES = [
     id: 'spatial', title: 'Spatial, two bodies', endpoint: '/v1/impacts/spatial', section: 'in space',
     about: 'Two rigid bodies, or one against a fixed barrier, in space: slip in any direction, an optional twist law about the normal.',
     parts: [
-      group('Body A', rigid(0)),
-      toggle('body-b', 'Body B (unchecked: A hits a fixed barrier)', [group('Body B', rigid(1))], hasBodyB),
-      group('Contact', [
-        vector('/contact/point', 'C', 'm', 'contact point', XYZ),
-        vector('/contact/normal', 'n', '', 'normal from B into A, any length', XYZ),
-      ]),
+      ...bodiesAndContact(rigid, XYZ),
       choice('law', 'Tangential law', [
         { id: 'friction', label: 'friction f', parts: [restitution(), friction()] },
         { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed ratio |P<sub>t</sub>|/P<sub>n</sub>, opposing the slip', NON_NEGATIVE)] },

@@ -228,31 +228,44 @@ fn write<N: Radical>(
             angular_velocity_change: Scene::<N>::vector_out(three(names, 10), &dw)?,
         };
     }
+    // The contact velocity at one instant, from the names of its normal, slip
+    // (x, y, z) and spin outputs.
+    let contact_velocity_at = |[normal, x, y, z, spin]: [Output; 5],
+                               un: &N,
+                               ut: &V3<N>,
+                               s: &N|
+     -> Exact<N, SpatialContactVelocity> {
+        Ok(SpatialContactVelocity {
+            normal: sc.along(normal, un)?,
+            tangential: Scene::<N>::vector_out([x, y, z], ut)?,
+            spin: sc.along(spin, s)?,
+        })
+    };
     let contact_velocity = SpatialContactVelocities {
-        initial: SpatialContactVelocity {
-            normal: sc.along(Output::InitialNormalContactVelocity, &sc.un)?,
-            tangential: Scene::<N>::vector_out(
-                [
-                    Output::InitialTangentialContactVelocityX,
-                    Output::InitialTangentialContactVelocityY,
-                    Output::InitialTangentialContactVelocityZ,
-                ],
-                &sc.ut,
-            )?,
-            spin: sc.along(Output::InitialContactSpin, &sc.s)?,
-        },
-        r#final: SpatialContactVelocity {
-            normal: sc.along(Output::FinalNormalContactVelocity, &e.mul(&sc.un).neg())?,
-            tangential: Scene::<N>::vector_out(
-                [
-                    Output::FinalTangentialContactVelocityX,
-                    Output::FinalTangentialContactVelocityY,
-                    Output::FinalTangentialContactVelocityZ,
-                ],
-                &final_ut,
-            )?,
-            spin: sc.along(Output::FinalContactSpin, &final_spin)?,
-        },
+        initial: contact_velocity_at(
+            [
+                Output::InitialNormalContactVelocity,
+                Output::InitialTangentialContactVelocityX,
+                Output::InitialTangentialContactVelocityY,
+                Output::InitialTangentialContactVelocityZ,
+                Output::InitialContactSpin,
+            ],
+            &sc.un,
+            &sc.ut,
+            &sc.s,
+        )?,
+        r#final: contact_velocity_at(
+            [
+                Output::FinalNormalContactVelocity,
+                Output::FinalTangentialContactVelocityX,
+                Output::FinalTangentialContactVelocityY,
+                Output::FinalTangentialContactVelocityZ,
+                Output::FinalContactSpin,
+            ],
+            &e.mul(&sc.un).neg(),
+            &final_ut,
+            &final_spin,
+        )?,
     };
     let impulse = SpatialImpulse {
         normal: sc.along(Output::NormalImpulse, &s.pn)?,
