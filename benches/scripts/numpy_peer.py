@@ -267,6 +267,34 @@ def cross_check(binary):
     return agree
 
 
+def grid_request(case, scene, axes, outputs=None, one_point=False):
+    """A sweep request of ``case`` from ``scene`` over ``axes`` ((path, (start, stop, count))
+    each, the first the slowest), with ``outputs`` (every output when None), or its first point."""
+    body = {"case": case, "base": scene, "axes": [
+        {"path": path, "linspace": {"start": start, "stop": stop, "count": 1 if one_point else count}}
+        for path, (start, stop, count) in axes]}
+    if outputs:
+        body["outputs"] = outputs
+    return body
+
+
+def service_grid(binary, body):
+    """The service's answer to a two-axis sweep ``body`` as CSV: the swept inputs (the
+    first two columns, in request order) as arrays, and every column by name (an axis's
+    name that comes again among the outputs keeps the output's values)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "sweep.json")
+        with open(path, "w") as file:
+            json.dump(body, file)
+        command = [binary, "sweep", "--request", path, "--format", "csv"]
+        print("cross-check:", " ".join(command), flush=True)
+        text = subprocess.run(command, check=True, capture_output=True, text=True, timeout=300).stdout
+    rows = list(csv.reader(text.splitlines()))
+    header, values = rows[0], rows[1:]
+    inputs = [np.array([row[i] for row in values], dtype=float) for i in (0, 1)]
+    return inputs, {name: [row[i] for row in values] for i, name in enumerate(header)}
+
+
 def time_service(binary, repetitions, points_per_sweep, requests):
     """The service's own sweep of a grid, one thread: ``restitution sweep --format arrow``
     to /dev/null with RAYON_NUM_THREADS=1, best of N wall-clock seconds, minus the best of

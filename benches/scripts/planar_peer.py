@@ -44,11 +44,8 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
              "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS"):
     os.environ[_var] = "1"
 
-import csv  # noqa: E402
 import json  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
-import tempfile  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -207,33 +204,12 @@ def final_tangential_contact_velocity(avx, bvy):
 
 def request(outputs=None, one_point=False):
     """The service's sweep request for this grid (or one point of it)."""
-    axes = [
-        {"path": "/bodies/0/velocity/x",
-         "linspace": {"start": A_VX[0], "stop": A_VX[1], "count": 1 if one_point else A_VX[2]}},
-        {"path": "/bodies/1/velocity/y",
-         "linspace": {"start": B_VY[0], "stop": B_VY[1], "count": 1 if one_point else B_VY[2]}},
-    ]
-    body = {"case": "planar", "base": SCENE, "axes": axes}
-    if outputs:
-        body["outputs"] = outputs
-    return body
+    return numpy_peer.grid_request("planar", SCENE, [("/bodies/0/velocity/x", A_VX), ("/bodies/1/velocity/y", B_VY)], outputs, one_point)
 
 
 def service_sweep(binary):
-    """The service's answer on the grid (every output), as CSV columns by name."""
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "sweep.json")
-        with open(path, "w") as file:
-            json.dump(request(), file)
-        command = [binary, "sweep", "--request", path, "--format", "csv"]
-        print("cross-check:", " ".join(command), flush=True)
-        text = subprocess.run(command, check=True, capture_output=True, text=True, timeout=300).stdout
-    rows = list(csv.reader(text.splitlines()))
-    header, body = rows[0], rows[1:]
-    # The first two columns are the swept inputs (the axes, in request order);
-    # their names come again among the outputs, which the dict keeps.
-    inputs = [np.array([row[i] for row in body], dtype=float) for i in (0, 1)]
-    return inputs, {name: [row[i] for row in body] for i, name in enumerate(header)}
+    """The service's answer on the grid (every output): the swept inputs, and CSV columns by name."""
+    return numpy_peer.service_grid(binary, request())
 
 
 def ulps(a, b):
