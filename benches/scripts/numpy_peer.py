@@ -295,6 +295,25 @@ def service_grid(binary, body):
     return inputs, {name: [row[i] for row in values] for i, name in enumerate(header)}
 
 
+def check_grid_and_refusals(service, inputs, grid, ours, points_per_sweep):
+    """The part of a grid peer's cross-check before its columns: the service answered
+    every point, its grid is numpy's, and it refused exactly the points where numpy's
+    T_L < 0. Returns (agree, the answered points' mask), or None when rows are missing."""
+    if len(service["/regime"]) != points_per_sweep:
+        print(f"service answered {len(service['/regime'])} rows, expected {points_per_sweep}")
+        return None
+    print(f"points: numpy's grid and the service's differ by at most "
+          f"{max(float(np.max(np.abs(g - i))) for g, i in zip(grid, inputs)):.3g}")
+    errors = np.array(service["error"])
+    refused = errors != ""
+    creates_energy = ours["/energy/loss"] < 0
+    agree = bool(np.array_equal(refused, creates_energy))
+    print(f"refused by the service: {np.count_nonzero(refused)} points "
+          f"({', '.join(sorted(set(errors[refused].tolist()))) or 'none'}); numpy's T_L < 0 at "
+          f"{np.count_nonzero(creates_energy)}")
+    return agree, ~refused
+
+
 def time_service(binary, repetitions, points_per_sweep, requests):
     """The service's own sweep of a grid, one thread: ``restitution sweep --format arrow``
     to /dev/null with RAYON_NUM_THREADS=1, best of N wall-clock seconds, minus the best of

@@ -231,23 +231,11 @@ def column_ulps(ours, theirs):
 def cross_check(binary):
     """Compares both variants with the service; True when every column agrees."""
     (avx, bvy), service = service_sweep(binary)
-    if len(service["/regime"]) != POINTS:
-        print(f"service answered {len(service['/regime'])} rows, expected {POINTS}")
-        return False
-    gx, gy = grid()
-    print(f"points: numpy's grid and the service's differ by at most "
-          f"{max(np.max(np.abs(gx - avx)), np.max(np.abs(gy - bvy))):.3g}")
     ours = planar_coulomb(avx, bvy)
-
-    errors = np.array(service["error"])
-    refused = errors != ""
-    creates_energy = ours["/energy/loss"] < 0
-    agree = bool(np.array_equal(refused, creates_energy))
-    print(f"refused by the service: {np.count_nonzero(refused)} points "
-          f"({', '.join(sorted(set(errors[refused].tolist()))) or 'none'}); numpy's T_L < 0 at "
-          f"{np.count_nonzero(creates_energy)}")
-
-    answered = ~refused
+    checked = numpy_peer.check_grid_and_refusals(service, (avx, bvy), grid(), ours, POINTS)
+    if checked is None:
+        return False
+    agree, answered = checked
     ours = {name: np.asarray(value)[answered] for name, value in ours.items()}
     numeric = [name for name in ours if name != "/regime" and not name.startswith("_")]
     theirs = {name: np.array(service[name])[answered].astype(float) for name in numeric}

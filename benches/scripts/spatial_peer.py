@@ -229,23 +229,11 @@ def service_sweep(binary):
 def cross_check(binary):
     """Compares both variants with the service; True when every column agrees."""
     (vy, wy), service = service_sweep(binary)
-    if len(service["/regime"]) != POINTS:
-        print(f"service answered {len(service['/regime'])} rows, expected {POINTS}")
-        return False
-    gy, gw = grid()
-    print(f"points: numpy's grid and the service's differ by at most "
-          f"{max(np.max(np.abs(gy - vy)), np.max(np.abs(gw - wy))):.3g}")
     ours = spatial_coulomb(vy, wy)
-
-    errors = np.array(service["error"])
-    refused = errors != ""
-    creates_energy = ours["/energy/loss"] < 0
-    agree = bool(np.array_equal(refused, creates_energy))
-    print(f"refused by the service: {np.count_nonzero(refused)} points "
-          f"({', '.join(sorted(set(errors[refused].tolist()))) or 'none'}); numpy's T_L < 0 at "
-          f"{np.count_nonzero(creates_energy)}")
-
-    answered = ~refused
+    checked = numpy_peer.check_grid_and_refusals(service, (vy, wy), grid(), ours, POINTS)
+    if checked is None:
+        return False
+    agree, answered = checked
     missing = [name for name in ours if name not in service]
     if missing:
         agree = False
