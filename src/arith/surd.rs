@@ -245,7 +245,7 @@ impl Field for Surd {
 
 /// A [`Field`] that can take the square root of a value the model formed
 /// without one (`|n|`, `|u_t|`): the spatial laws' sliding direction.
-pub(crate) trait Radical: Field {
+pub(crate) trait Radical: Field + 'static {
     /// `√x` of a non-negative `x`: approximately in f64; with a rigorous
     /// bound in double-double; exactly (as a [`Surd`]) in the last stage.
     /// The compensated stage's static bound does not cover roots: it gives

@@ -429,6 +429,7 @@ fn fast_or_exact<T>(
     // The only place the f64 evaluation runs: its outputs are measured
     // against this impact's scales, whoever called.
     crate::arith::measure_against(&scales);
+    // For `Loose`, the first is in `LooseFast`.
     let first = match bounds {
         StaticBounds::Tight => run_fast::<false, true, T>(model, out),
         StaticBounds::Loose => run_fast::<true, false, T>(model, out),
@@ -454,6 +455,11 @@ fn fast_or_exact<T>(
         Err(Fail::Refused(_) | Fail::Undecided(Uncertain::Range)) => adaptive(model, bounds, out),
     }
 }
+
+/// The field `fast` evaluates a [`StaticBounds::Loose`] model in first (the
+/// running bound alone), which answers nearly every point: what a sweep
+/// forms once for such a model, it forms in this field.
+pub(crate) type LooseFast = Filtered<true, false>;
 
 /// The model in `Filtered`, through `kernels::run`: one compiled body per
 /// model and bound, whoever calls (a sweep's every output format, a fit, a

@@ -3,15 +3,16 @@
 //! `spatial` endpoint). The model is `src/model/spatial.rs`.
 
 use std::cmp::Ordering;
+use std::fmt;
 
 use super::approach::{approach_bound, approaches};
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
+use super::{Arithmetic, Case, LooseFast, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::{Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::input::{Law, RigidBody, SpatialImpact, Twist};
 use crate::model::Exact;
-use crate::model::spatial::{approach, leading_minors, spatial};
+use crate::model::spatial::{Geometry, approach, leading_minors, spatial};
 use crate::outcome::{Outputs, SPATIAL_BODY_OUTPUTS, SpatialOutcome};
 
 /// The inputs of each body, in request order: parts of the case's declaration.
@@ -51,15 +52,25 @@ impl RigidBody {
         std::array::from_fn(|i| *copy.slot(i))
     }
 
-    /// Every input in request order, then the tensor: symmetric by
-    /// construction, positive definite by its leading minors (decided
-    /// exactly where the f64 ones are too close to zero for their bound).
-    fn validate(&self, k: usize) -> Result<()> {
+    /// Every input in request order, then the tensor ([`RigidBody::check_tensor`],
+    /// or its result `checked` once for a sweep).
+    fn validate(&self, k: usize, checked: Option<&Result<()>>) -> Result<()> {
         let names = &BODY_INPUTS[k];
         positive(names[0], self.mass)?;
         for (i, x) in self.values().into_iter().enumerate().skip(1) {
             finite(names[i], x)?;
         }
+        match checked {
+            Some(result) => result.clone(),
+            None => self.check_tensor(k),
+        }
+    }
+
+    /// The tensor of a body whose inputs are finite: symmetric by
+    /// construction, positive definite by its leading minors (decided
+    /// exactly where the f64 ones are too close to zero for their bound),
+    /// and a rigid body's.
+    fn check_tensor(&self, k: usize) -> Result<()> {
         let fast = leading_minors::<f64>(&self.inertia);
         let [xx, yy, zz, xy, xz, yz] = self.inertia.map(f64::abs);
         // Each minor's terms, to bound its rounding error.
@@ -137,12 +148,13 @@ impl SpatialImpact {
         std::iter::once(&self.a).chain(self.b.as_ref())
     }
 
-    /// Checks every input in request order, the laws, and whether the
-    /// contact approaches, exactly. Returns the validated law and whether the
-    /// f64 evaluation decides the approach the same way.
-    fn validate(&self) -> Result<(Law, bool)> {
+    /// Checks every input in request order (each body's tensor as `fixed`
+    /// checked it, if it did), the laws, and whether the contact approaches,
+    /// exactly. Returns the validated law and whether the f64 evaluation
+    /// decides the approach the same way.
+    fn validate(&self, fixed: &Fixed) -> Result<(Law, bool)> {
         for (k, body) in self.bodies().enumerate() {
-            body.validate(k)?;
+            body.validate(k, fixed.tensors[k].as_ref())?;
         }
         let point = [Input::ContactX, Input::ContactY, Input::ContactZ];
         let normal = [Input::NormalX, Input::NormalY, Input::NormalZ];
@@ -241,21 +253,80 @@ impl SpatialImpact {
     }
 }
 
+/// What a sweep's points share, formed once: each body's tensor checks
+/// when no axis changes that tensor, and the geometry in `fast`'s first
+/// field when no axis changes a mass, a tensor, a position, the contact
+/// point or the normal, and they are valid and in the fast range.
+#[derive(Clone)]
+pub struct Fixed {
+    tensors: [Option<Result<()>>; 2],
+    /// Boxed: a sweep holds one, and it is larger than the rest of the sweep.
+    geometry: Option<Box<Geometry<LooseFast>>>,
+}
+
+impl fmt::Debug for Fixed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Fixed")
+            .field("tensors", &self.tensors)
+            .field("geometry", &self.geometry.as_ref().map(|_| "formed"))
+            .finish()
+    }
+}
+
+impl SpatialImpact {
+    /// The inputs the geometry reads: each body's mass, tensor and
+    /// position, the contact point and the normal.
+    fn geometry_inputs(&self) -> impl Iterator<Item = Input> + '_ {
+        self.bodies()
+            .enumerate()
+            .flat_map(|(k, _)| BODY_INPUTS[k][..10].iter().copied())
+            .chain([Input::ContactX, Input::ContactY, Input::ContactZ])
+            .chain([Input::NormalX, Input::NormalY, Input::NormalZ])
+    }
+
+    /// The geometry in `LooseFast` if the inputs it reads are valid (each
+    /// tensor's check being `tensors`) and in the fast range, else `None`.
+    fn fast_geometry(&self, tensors: &[Option<Result<()>>; 2]) -> Option<Box<Geometry<LooseFast>>> {
+        let mut copy = *self;
+        let inputs: Vec<f64> = self
+            .geometry_inputs()
+            .filter_map(|i| copy.input_mut(i).map(|x| *x))
+            .collect();
+        let valid = self.bodies().all(|b| b.mass > 0.0)
+            && inputs.iter().all(|x| x.is_finite())
+            && all_in_range(&inputs)
+            && tensors
+                .iter()
+                .take(self.bodies().count())
+                .all(|t| matches!(t, Some(Ok(()))))
+            && self.contact.normal.iter().any(|&x| x != 0.0);
+        valid.then(|| Box::new(crate::kernels::run(|| Geometry::new(self))))
+    }
+}
+
+/// The model of a validated contact, with its geometry in `fast`'s first
+/// field when a sweep formed it once.
 struct Space<'a> {
     impact: &'a SpatialImpact,
+    prepared: Option<&'a Geometry<LooseFast>>,
     outputs: Outputs,
 }
 
 impl Model<SpatialOutcome> for Space<'_> {
     #[inline(always)]
     fn run<N: Radical>(&self, out: &mut SpatialOutcome) -> Exact<N, ()> {
-        spatial::<N>(self.impact, self.outputs, out)
+        // The prepared geometry serves the field it was formed in; every
+        // other field forms its own.
+        let prepared = self
+            .prepared
+            .and_then(|g| (g as &dyn std::any::Any).downcast_ref::<Geometry<N>>());
+        spatial::<N>(self.impact, prepared, self.outputs, out)
     }
 }
 
 impl Case for SpatialImpact {
     type Outcome = SpatialOutcome;
-    type Fixed = ();
+    type Fixed = Fixed;
 
     reads!(|impact, input| {
         MassA => Some(&mut impact.a.mass),
@@ -345,19 +416,33 @@ impl Case for SpatialImpact {
         }
     }
 
-    fn fix(&self, _swept: &[Input]) {}
+    fn fix(&self, swept: &[Input]) -> Fixed {
+        let tensors = std::array::from_fn(|k| {
+            let body = if k == 0 { Some(&self.a) } else { self.b.as_ref() }?;
+            let tensor = &BODY_INPUTS[k][1..7];
+            let finite = body.inertia.iter().all(|x| x.is_finite());
+            (finite && !swept.iter().any(|i| tensor.contains(i))).then(|| body.check_tensor(k))
+        });
+        let geometry_swept = self.geometry_inputs().any(|i| swept.contains(&i));
+        let geometry = if geometry_swept {
+            None
+        } else {
+            self.fast_geometry(&tensors)
+        };
+        Fixed { tensors, geometry }
+    }
 
     #[inline(always)]
     fn evaluate(
         &self,
-        _fixed: &(),
+        fixed: &Fixed,
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
         out: &mut SpatialOutcome,
     ) -> (Result<()>, Stage) {
         let stage = arithmetic.validating_stage();
-        match self.validate() {
+        match self.validate(fixed) {
             Ok((law, certain)) => {
                 let impact = SpatialImpact { law, ..*self };
                 let in_range = in_range
@@ -372,6 +457,7 @@ impl Case for SpatialImpact {
                     StaticBounds::Loose,
                     Space {
                         impact: &impact,
+                        prepared: fixed.geometry.as_deref(),
                         outputs,
                     },
                     out,
@@ -385,6 +471,7 @@ impl Case for SpatialImpact {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::impact::{Precision, Solver};
     use crate::input::SpatialContact;
 
     fn body(seed: f64) -> RigidBody {
@@ -412,6 +499,133 @@ mod tests {
                 tangential_restitution: 0.125,
             },
             torsion,
+        }
+    }
+
+    /// A sweep's geometry formed once (in `fast`'s first field) answers
+    /// every point as the geometry formed per point does: the same bits,
+    /// regimes and refusals, in every law, with and without body B and a
+    /// twist law; an axis on a geometry input forms it per point.
+    #[test]
+    fn a_geometry_formed_once_answers_as_one_formed_per_point() {
+        let sphere = 2.0 / 3.0 * 0.057 * 0.033 * 0.033;
+        let ball = RigidBody {
+            mass: 0.057,
+            inertia: [sphere, sphere, sphere, 0.0, 0.0, 0.0],
+            position: [0.0, 0.0, 0.033],
+            velocity: [20.0, 0.0, -10.0],
+            angular_velocity: [0.0, 300.0, 0.0],
+        };
+        let block = RigidBody {
+            mass: 2.5,
+            inertia: [0.012, 0.018, 0.009, 0.001, -0.002, 0.0005],
+            position: [0.0, 0.0, 0.12],
+            velocity: [0.3, 0.1, -0.8],
+            angular_velocity: [1.0, -2.0, 0.5],
+        };
+        let plate = RigidBody {
+            mass: 4.0,
+            inertia: [0.05, 0.04, 0.06, 0.0, 0.0, 0.0],
+            position: [0.05, -0.02, -0.1],
+            velocity: [0.0, 0.0, 0.1],
+            angular_velocity: [0.0, 0.0, 0.0],
+        };
+        let scenes = [
+            (ball, None, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+            (block, Some(plate), [0.01, 0.0, 0.0], [0.1, 0.0, 1.0]),
+        ];
+        let laws = [
+            Law::Frictionless { restitution: 0.6 },
+            Law::ImpulseRatio {
+                restitution: 0.5,
+                impulse_ratio: 0.2,
+            },
+            Law::Friction {
+                restitution: 0.75,
+                friction: 0.6,
+            },
+            Law::TangentialRestitution {
+                restitution: 0.5,
+                friction: 0.3,
+                tangential_restitution: 0.2,
+            },
+            Law::KineticRestitution {
+                value: 0.5,
+                approach_impulse_ratio: 0.2,
+                rebound_impulse_ratio: 0.1,
+            },
+            Law::KineticFriction {
+                value: 0.5,
+                approach_friction: 0.3,
+                rebound_impulse_ratio: 0.0,
+            },
+        ];
+        let twist = Twist {
+            restitution: 0.1,
+            friction: 0.2,
+            pitch_radius: 0.004,
+        };
+        let swept = [Input::VelocityAX, Input::VelocityAZ, Input::AngularVelocityAY];
+        let mut answered = 0;
+        for (a, b, point, normal) in scenes {
+            for law in laws {
+                for torsion in [None, Some(twist)] {
+                    let base = SpatialImpact {
+                        a,
+                        b,
+                        contact: SpatialContact { point, normal },
+                        law,
+                        torsion,
+                    };
+                    let once = Solver::new(&base, &swept, Outputs::ALL, Precision::Fast);
+                    assert!(once.fixed.geometry.is_some());
+                    let per_point = Solver::new(
+                        &base,
+                        &[&swept[..], &[Input::PositionAZ]].concat(),
+                        Outputs::ALL,
+                        Precision::Fast,
+                    );
+                    assert!(per_point.fixed.geometry.is_none());
+                    for vx in [-3.0, 0.0, 0.5, 20.0] {
+                        for vz in [-10.0, -1e-3, 0.0, 1.0] {
+                            for wy in [-900.0, 0.0, 300.0] {
+                                let mut p = base;
+                                p.a.velocity[0] = vx;
+                                p.a.velocity[2] = vz;
+                                p.a.angular_velocity[1] = wy;
+                                let got = format!("{:?}", once.solve(&p));
+                                assert_eq!(got, format!("{:?}", per_point.solve(&p)), "{p:?}");
+                                let single = crate::impact::solve(&p, Outputs::ALL, Precision::Fast);
+                                assert_eq!(got, format!("{single:?}"), "{p:?}");
+                                answered += usize::from(single.is_ok());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Half the points approach (1,152 in all), and most of those are
+        // answered (the two-phase laws refuse a twist law); the rest are
+        // refused alike.
+        assert!(answered >= 400, "{answered}");
+    }
+
+    /// A tensor checked once for a sweep gives its refusal at every point,
+    /// after the point's own inputs, as a single solve does.
+    #[test]
+    fn a_tensor_checked_once_refuses_as_a_single_solve_does() {
+        let mut base = impact(None, None);
+        base.a.inertia = [1.0, 1.0, 3.0, 0.0, 0.0, 0.0];
+        base.a.velocity = [0.0, 0.0, -1.0];
+        let solver = Solver::new(&base, &[Input::VelocityAX], Outputs::ALL, Precision::Fast);
+        assert!(matches!(solver.fixed.tensors[0], Some(Err(_))));
+        assert!(solver.fixed.geometry.is_none());
+        for vx in [0.0, f64::NAN] {
+            let mut p = base;
+            p.a.velocity[0] = vx;
+            let single = crate::impact::solve(&p, Outputs::ALL, Precision::Fast);
+            assert!(single.is_err());
+            assert_eq!(format!("{:?}", solver.solve(&p)), format!("{single:?}"));
         }
     }
 

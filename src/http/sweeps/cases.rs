@@ -20,8 +20,10 @@ use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, 
 use crate::quantity::{Input, Output};
 use crate::sweep::{CaseSweep, Sweep};
 
-/// A checked sweep of any case, by the kind of impact it solves.
+/// A checked sweep of any case, by the kind of impact it solves (one per
+/// request, so its variants' sizes do not matter).
 #[derive(Debug)]
+#[allow(clippy::large_enum_variant)]
 pub enum AnySweep {
     /// The normal, oblique and tangential cases.
     Planar(Sweep<CaseSweep<PlanarImpact>>),

@@ -34,7 +34,7 @@ pub(super) fn kinetic<N: Radical>(
     let refuse = |error: ImpactError| -> Exact<N, ()> { Err(Fail::Refused(error)) };
     let zero = N::of(0.0);
     // The approach's sticking impulse (W P = −u: it ends with U = 0).
-    let stick = map(&sym_mul(&sc.adj, &sc.u), |x| x.div(&sc.det).neg());
+    let stick = map(&sym_mul(&sc.g.adj, &sc.u), |x| x.div(&sc.g.det).neg());
     let stick = sc.solution(stick, zero.clone());
     let (pointer, mu_a, kept) = match phases.approach {
         Approach::Ratio(mu) => (Input::ApproachImpulseRatio, mu, false),
@@ -68,14 +68,14 @@ pub(super) fn kinetic<N: Radical>(
     let sliding = !kept && mu_a > 0.0;
     let along = match &w {
         Some((w, size)) if sliding || (rebound && mu_r > 0.0) => {
-            let rho = sc.nu.div(size).sqrt().map_err(Fail::Undecided)?;
+            let rho = sc.g.nu.div(size).sqrt().map_err(Fail::Undecided)?;
             Some(scale(&rho, w))
         }
         _ => None,
     };
     // D (scaled by ν) = nᵀ W n + μ (W n)·(ρ w).
-    let wn = sym_mul(&sc.w_matrix, &sc.n);
-    let nwn = dot(&sc.n, &wn);
+    let wn = sym_mul(&sc.g.w_matrix, &sc.g.n);
+    let nwn = dot(&sc.g.n, &wn);
     let coefficient = |mu: f64| match &along {
         Some(a) if mu > 0.0 => N::of(mu).mul_add(&dot(&wn, a), &nwn),
         _ => nwn.clone(),
@@ -85,7 +85,7 @@ pub(super) fn kinetic<N: Radical>(
         if sign(&stick.pn)? != Ordering::Greater {
             return refuse(ImpactError::NoImpulse { input: pointer });
         }
-        (stick.pn.div(&sc.nu), stick.pt.clone())
+        (stick.pn.div(&sc.g.nu), stick.pt.clone())
     } else {
         let d_a = coefficient(mu_a);
         if sign(&d_a)? != Ordering::Greater {
@@ -120,12 +120,12 @@ pub(super) fn kinetic<N: Radical>(
     };
     let normal = alpha.add(&beta);
     let s = Solution {
-        p: axpy(&normal, &sc.n, &pt),
-        pn: normal.mul(&sc.nu),
+        p: axpy(&normal, &sc.g.n, &pt),
+        pn: normal.mul(&sc.g.nu),
         pt,
         kappa: zero.clone(),
     };
-    let du = sym_mul(&sc.w_matrix, &s.p);
+    let du = sym_mul(&sc.g.w_matrix, &s.p);
     let (final_ut, slip_sum) = sc.slip_after(&du);
     let work = sc.work(&s, &e, &slip_sum, &zero);
     if sign(&work)? == Ordering::Greater {
@@ -151,13 +151,13 @@ pub(super) fn kinetic<N: Radical>(
     // μ_c of the sticking impulse with the equivalent e (rule 5).
     let critical_impulse_ratio = if outputs.critical_impulse_ratio {
         let q = N::of(1.0).add(&e).mul(&sc.un).neg();
-        let target = axpy(&q.div(&sc.nu), &sc.n, &neg(&sc.ut));
-        let stick = divide(&sym_mul(&sc.adj, &target), &sc.det);
+        let target = axpy(&q.div(&sc.g.nu), &sc.g.n, &neg(&sc.ut));
+        let stick = divide(&sym_mul(&sc.g.adj, &target), &sc.g.det);
         sc.ratio(&sc.solution(stick, zero), Output::CriticalImpulseRatio)?
     } else {
         None
     };
-    let final_spin = sc.s.add(&dot(&sc.w, &s.p));
+    let final_spin = sc.s.add(&dot(&sc.g.w, &s.p));
     let answer = Written {
         s,
         e,

@@ -50,6 +50,7 @@ use crate::outcome::{
 
 use self::kinetic::kinetic;
 use self::law::*;
+pub(crate) use self::scene::Geometry;
 use self::scene::*;
 use super::vector::*;
 
@@ -87,18 +88,29 @@ fn three(o: &[Output], from: usize) -> [Output; 3] {
 }
 
 /// A validated spatial contact in the field `N`: refused unless it
-/// approaches (`u·n < 0`, decided exactly in the exact fields).
+/// approaches (`u·n < 0`, decided exactly in the exact fields). `prepared`
+/// is its geometry in `N` when a sweep formed it once (the same values
+/// [`Geometry::new`] forms).
 #[inline(always)]
 pub(crate) fn spatial<N: Radical>(
     impact: &SpatialImpact,
+    prepared: Option<&Geometry<N>>,
     outputs: Outputs,
     outcome: &mut SpatialOutcome,
 ) -> Exact<N, ()> {
-    let mut sc = Scene::<N>::new(impact);
+    let formed;
+    let geometry = match prepared {
+        Some(geometry) => geometry,
+        None => {
+            formed = Geometry::new(impact);
+            &formed
+        }
+    };
+    let mut sc = Scene::<N>::new(impact, geometry);
     if sign(&sc.un)? != Ordering::Less {
         return Err(ImpactError::NotApproaching {
             input: Input::VelocityA,
-            normal_contact_velocity: sc.un.approx() / sc.nu.approx().sqrt(),
+            normal_contact_velocity: sc.un.approx() / sc.g.nu.approx().sqrt(),
         }
         .into());
     }
@@ -118,8 +130,8 @@ pub(crate) fn spatial<N: Radical>(
     let one = N::of(1.0);
     let e = N::of(sc.law.e);
     // Δu = W P + w κ, Δs̃ = wᵀ P + k κ.
-    let du = axpy(&s.kappa, &sc.w, &sym_mul(&sc.w_matrix, &s.p));
-    let dspin = sc.k.mul_add(&s.kappa, &dot(&sc.w, &s.p));
+    let du = axpy(&s.kappa, &sc.g.w, &sym_mul(&sc.g.w_matrix, &s.p));
+    let dspin = sc.g.k.mul_add(&s.kappa, &dot(&sc.g.w, &s.p));
     let (final_ut, slip_sum) = match t {
         Tangential::Kept => {
             let et = N::of(sc.law.kept.unwrap_or(0.0));
@@ -214,35 +226,22 @@ fn write<N: Radical>(
     } = answer;
     let mut bodies = [SpatialBodyOutcome::default(); 2];
     let p2 = norm2(&s.p);
-    for (index, b) in sc.bodies.iter().enumerate() {
+    for (index, (b, motion)) in sc.g.bodies.iter().zip(&sc.motion).enumerate() {
         let names = &SPATIAL_BODY_OUTPUTS[index];
         let signed = |x: N| if index == 0 { x } else { x.neg() };
         let dv = map(&s.p, |x| signed(x.mul(&b.inv_m)));
-        let moment = axpy(&s.kappa, &sc.n, &cross(&b.r, &s.p));
+        let moment = axpy(&s.kappa, &sc.g.n, &cross(&b.r, &s.p));
         let dw = map(&sym_mul(&b.inv_i, &moment), |x| signed(x.clone()));
         bodies[index] = SpatialBodyOutcome {
-            velocity: Scene::<N>::vector_out(three(names, 0), &add(&b.v, &dv))?,
-            angular_velocity: Scene::<N>::vector_out(three(names, 3), &add(&b.w, &dw))?,
+            velocity: Scene::<N>::vector_out(three(names, 0), &add(&motion.v, &dv))?,
+            angular_velocity: Scene::<N>::vector_out(three(names, 3), &add(&motion.w, &dw))?,
             velocity_change: Scene::<N>::vector_out(three(names, 6), &dv)?,
             delta_v: out_times_sqrt(names[9], &b.inv_m, &p2)?,
             angular_velocity_change: Scene::<N>::vector_out(three(names, 10), &dw)?,
         };
     }
-    // The contact velocity at one instant, from the names of its normal, slip
-    // (x, y, z) and spin outputs.
-    let contact_velocity_at = |[normal, x, y, z, spin]: [Output; 5],
-                               un: &N,
-                               ut: &V3<N>,
-                               s: &N|
-     -> Exact<N, SpatialContactVelocity> {
-        Ok(SpatialContactVelocity {
-            normal: sc.along(normal, un)?,
-            tangential: Scene::<N>::vector_out([x, y, z], ut)?,
-            spin: sc.along(spin, s)?,
-        })
-    };
     let contact_velocity = SpatialContactVelocities {
-        initial: contact_velocity_at(
+        initial: sc.contact_velocity_at(
             [
                 Output::InitialNormalContactVelocity,
                 Output::InitialTangentialContactVelocityX,
@@ -254,7 +253,7 @@ fn write<N: Radical>(
             &sc.ut,
             &sc.s,
         )?,
-        r#final: contact_velocity_at(
+        r#final: sc.contact_velocity_at(
             [
                 Output::FinalNormalContactVelocity,
                 Output::FinalTangentialContactVelocityX,
@@ -277,7 +276,7 @@ fn write<N: Radical>(
             ],
             &s.pt,
         )?,
-        torsional: out_times_sqrt(Output::TorsionalImpulse, &s.kappa, &sc.nu)?,
+        torsional: out_times_sqrt(Output::TorsionalImpulse, &s.kappa, &sc.g.nu)?,
         x: out(Output::ImpulseX, &s.p[0])?,
         y: out(Output::ImpulseY, &s.p[1])?,
         z: out(Output::ImpulseZ, &s.p[2])?,
@@ -297,7 +296,7 @@ fn write<N: Radical>(
         None
     };
     *outcome = SpatialOutcome {
-        body_count: sc.bodies.len(),
+        body_count: sc.g.bodies.len(),
         bodies,
         contact_velocity,
         impulse,

@@ -4,41 +4,54 @@
 
 use super::*;
 
-/// One body in the field.
+/// One body's mass properties and lever arm in the field.
 #[derive(Clone)]
-pub(super) struct Body<N> {
+pub(super) struct Inertial<N> {
     pub(super) m: N,
     pub(super) inv_m: N,
     pub(super) tensor: Sym<N>,
     pub(super) inv_i: Sym<N>,
     pub(super) r: V3<N>,
-    pub(super) v: V3<N>,
-    pub(super) w: V3<N>,
 }
 
-impl<N: Field> Body<N> {
+impl<N: Field> Inertial<N> {
     #[inline(always)]
-    pub(super) fn new(body: &RigidBody, c: &V3<N>) -> Self {
+    fn new(body: &RigidBody, c: &V3<N>) -> Self {
         let m = N::of(body.mass);
         let tensor = sym::<N>(&body.inertia);
         let (adj, det) = adjugate(&tensor);
         let inv_det = N::of(1.0).div(&det);
         let position = vector(body.position);
-        Body {
+        Inertial {
             inv_m: N::of(1.0).div(&m),
             inv_i: sym_times(&adj, &inv_det),
             r: sub(c, &position),
-            v: vector(body.velocity),
-            w: vector(body.angular_velocity),
             m,
             tensor,
         }
     }
+}
 
-    /// The contact-point velocity `v + ω × r`.
+/// One body's motion in the field: velocity `v` and angular velocity `ω`.
+#[derive(Clone)]
+pub(super) struct Motion<N> {
+    pub(super) v: V3<N>,
+    pub(super) w: V3<N>,
+}
+
+impl<N: Field> Motion<N> {
     #[inline(always)]
-    pub(super) fn contact_velocity(&self) -> V3<N> {
-        point_velocity(&self.v, &self.w, &self.r)
+    fn new(body: &RigidBody) -> Self {
+        Motion {
+            v: vector(body.velocity),
+            w: vector(body.angular_velocity),
+        }
+    }
+
+    /// The contact-point velocity `v + ω × r` of a body with lever arm `r`.
+    #[inline(always)]
+    fn contact_velocity(&self, r: &V3<N>) -> V3<N> {
+        point_velocity(&self.v, &self.w, r)
     }
 }
 
@@ -58,35 +71,29 @@ fn tangential_part<N: Field>(x: &V3<N>, a: &N, n: &V3<N>, axis: Option<usize>) -
     part
 }
 
-/// A validated contact in the field.
-pub(super) struct Scene<'a, N> {
+/// A contact in space before its velocities, in the field `N`: the normal,
+/// the bodies' mass properties and lever arms, and the contact matrix with
+/// the couple. It reads only masses, tensors, positions, the contact point
+/// and the normal, so a sweep whose axes change none of them forms it once.
+#[derive(Clone)]
+pub(crate) struct Geometry<N> {
     pub(super) n: V3<N>,
     pub(super) nu: N,
     /// The coordinate axis `n` lies along, if it does ([`tangential_part`]).
     pub(super) axis: Option<usize>,
-    pub(super) bodies: Vec<Body<N>>,
-    /// `u` (relative contact-point velocity), `u·n`, `u_t`, `s̃`.
-    pub(super) u: V3<N>,
-    pub(super) un: N,
-    pub(super) ut: V3<N>,
-    pub(super) s: N,
+    pub(super) bodies: Vec<Inertial<N>>,
     pub(super) w_matrix: Sym<N>,
     pub(super) adj: Sym<N>,
     pub(super) det: N,
     /// `w` and `k` of the couple.
     pub(super) w: V3<N>,
     pub(super) k: N,
-    /// `q = −(1 + e) u·n`.
-    pub(super) q: N,
-    pub(super) law: Reading,
-    pub(super) twist: Option<&'a Twist>,
-    /// Solutions found so far, by `(branch, spin)`; the sticking one for `μ_c`.
-    pub(super) cache: [Option<Option<Solution<N>>>; 12],
 }
 
-impl<'a, N: Radical> Scene<'a, N> {
+impl<N: Field> Geometry<N> {
+    /// The geometry of a validated `impact`.
     #[inline(always)]
-    pub(super) fn new(impact: &'a SpatialImpact) -> Self {
+    pub(crate) fn new(impact: &SpatialImpact) -> Self {
         let c: V3<N> = vector(impact.contact.point);
         let n = vector(impact.contact.normal);
         let nu = norm2(&n);
@@ -96,19 +103,10 @@ impl<'a, N: Radical> Scene<'a, N> {
             [false, false, true] => Some(2),
             _ => None,
         };
-        let mut bodies = vec![Body::new(&impact.a, &c)];
+        let mut bodies = vec![Inertial::new(&impact.a, &c)];
         if let Some(b) = &impact.b {
-            bodies.push(Body::new(b, &c));
+            bodies.push(Inertial::new(b, &c));
         }
-        let mut u = bodies[0].contact_velocity();
-        let mut spin = bodies[0].w.clone();
-        if let Some(b) = bodies.get(1) {
-            u = sub(&u, &b.contact_velocity());
-            spin = sub(&spin, &b.w);
-        }
-        let un = dot(&u, &n);
-        let ut = tangential_part(&u, &un.div(&nu), &n, axis);
-        let s = dot(&spin, &n);
         // W = Σ 1/m + Σ cᵢᵀ I⁻¹ cⱼ with cᵢ = r × eᵢ; w = Σ (I⁻¹ n) × r; k = Σ nᵀ I⁻¹ n.
         let zero = N::of(0.0);
         let mut w_matrix: Sym<N> = std::array::from_fn(|_| zero.clone());
@@ -139,22 +137,69 @@ impl<'a, N: Radical> Scene<'a, N> {
             k = k.add(&dot(&n, &about));
         }
         let (adj, det) = adjugate(&w_matrix);
-        let law = Reading::of(&impact.law, impact.torsion.is_some());
-        let q = N::of(1.0).add(&N::of(law.e)).mul(&un).neg();
-        Scene {
+        Geometry {
             n,
             nu,
             axis,
             bodies,
-            u,
-            un,
-            ut,
-            s,
             w_matrix,
             adj,
             det,
             w,
             k,
+        }
+    }
+}
+
+/// A validated contact in the field: its geometry and the velocities.
+pub(super) struct Scene<'a, N> {
+    pub(super) g: &'a Geometry<N>,
+    /// Each body's motion (the second unused without a body B).
+    pub(super) motion: [Motion<N>; 2],
+    /// `u` (relative contact-point velocity), `u·n`, `u_t`, `s̃`.
+    pub(super) u: V3<N>,
+    pub(super) un: N,
+    pub(super) ut: V3<N>,
+    pub(super) s: N,
+    /// `q = −(1 + e) u·n`.
+    pub(super) q: N,
+    pub(super) law: Reading,
+    pub(super) twist: Option<&'a Twist>,
+    /// Solutions found so far, by `(branch, spin)`; the sticking one for `μ_c`.
+    pub(super) cache: [Option<Option<Solution<N>>>; 12],
+}
+
+impl<'a, N: Radical> Scene<'a, N> {
+    /// The scene of a validated `impact` whose geometry is `g`.
+    #[inline(always)]
+    pub(super) fn new(impact: &'a SpatialImpact, g: &'a Geometry<N>) -> Self {
+        let a = Motion::new(&impact.a);
+        let mut u = a.contact_velocity(&g.bodies[0].r);
+        let mut spin = a.w.clone();
+        let b = match (&impact.b, g.bodies.get(1)) {
+            (Some(body), Some(inertial)) => {
+                let b = Motion::new(body);
+                u = sub(&u, &b.contact_velocity(&inertial.r));
+                spin = sub(&spin, &b.w);
+                b
+            }
+            _ => Motion {
+                v: vector([0.0; 3]),
+                w: vector([0.0; 3]),
+            },
+        };
+        let un = dot(&u, &g.n);
+        let ut = tangential_part(&u, &un.div(&g.nu), &g.n, g.axis);
+        let s = dot(&spin, &g.n);
+        let law = Reading::of(&impact.law, impact.torsion.is_some());
+        let q = N::of(1.0).add(&N::of(law.e)).mul(&un).neg();
+        Scene {
+            g,
+            motion: [a, b],
+            u,
+            un,
+            ut,
+            s,
             q,
             law,
             twist: impact.torsion.as_ref(),
@@ -165,8 +210,8 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `(P, κ)` with its `P·n` and `P_t`.
     #[inline(always)]
     pub(super) fn solution(&self, p: V3<N>, kappa: N) -> Solution<N> {
-        let pn = dot(&p, &self.n);
-        let pt = tangential_part(&p, &pn.div(&self.nu), &self.n, self.axis);
+        let pn = dot(&p, &self.g.n);
+        let pt = tangential_part(&p, &pn.div(&self.g.nu), &self.g.n, self.g.axis);
         Solution { p, kappa, pn, pt }
     }
 
@@ -204,7 +249,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         let Some(twist) = self.twist else {
             return Ok((N::of(0.0), N::of(0.0)));
         };
-        let c0 = N::of(twist.restitution).mul(&self.s).div(&self.k).neg();
+        let c0 = N::of(twist.restitution).mul(&self.s).div(&self.g.k).neg();
         let tau = match sign(&self.s)? {
             Ordering::Greater => -1.0,
             Ordering::Less => 1.0,
@@ -219,7 +264,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         };
         let c1 = N::of(tau * twist.friction)
             .mul(&N::of(twist.pitch_radius))
-            .div(&self.nu);
+            .div(&self.g.nu);
         Ok((c0, c1))
     }
 
@@ -232,35 +277,35 @@ impl<'a, N: Radical> Scene<'a, N> {
         match t {
             Tangential::Kept => {
                 let target = axpy(
-                    &self.q.div(&self.nu),
-                    &self.n,
+                    &self.q.div(&self.g.nu),
+                    &self.g.n,
                     &map(&self.ut, |x| N::of(1.0).add(&N::of(et)).mul(x).neg()),
                 );
-                let a = sym_mul(&self.adj, &target);
+                let a = sym_mul(&self.g.adj, &target);
                 match z {
-                    Spin::Off => Ok(Some(self.solution(divide(&a, &self.det), N::of(0.0)))),
+                    Spin::Off => Ok(Some(self.solution(divide(&a, &self.g.det), N::of(0.0)))),
                     Spin::Restitution => {
-                        let b = sym_mul(&self.adj, &self.w);
-                        let schur = self.k.mul_add(&self.det, &dot(&self.w, &b).neg());
-                        let kappa = ds.mul_add(&self.det, &dot(&self.w, &a).neg()).div(&schur);
-                        let p = divide(&axpy(&kappa.neg(), &b, &a), &self.det);
+                        let b = sym_mul(&self.g.adj, &self.g.w);
+                        let schur = self.g.k.mul_add(&self.g.det, &dot(&self.g.w, &b).neg());
+                        let kappa = ds.mul_add(&self.g.det, &dot(&self.g.w, &a).neg()).div(&schur);
+                        let p = divide(&axpy(&kappa.neg(), &b, &a), &self.g.det);
                         Ok(Some(self.solution(p, kappa)))
                     }
                     Spin::Sliding => {
                         let (c0, c1) = self.twist_terms(t, et)?;
-                        let rhs = axpy(&c0.neg(), &self.w, &target);
-                        let a = sym_mul(&self.adj, &rhs);
-                        let b = sym_mul(&self.adj, &self.w);
-                        let den = c1.mul_add(&dot(&self.n, &b), &self.det);
+                        let rhs = axpy(&c0.neg(), &self.g.w, &target);
+                        let a = sym_mul(&self.g.adj, &rhs);
+                        let b = sym_mul(&self.g.adj, &self.g.w);
+                        let den = c1.mul_add(&dot(&self.g.n, &b), &self.g.det);
                         if sign(&den)? == Ordering::Equal {
                             return Ok(None);
                         }
-                        let na = dot(&self.n, &a);
-                        let scale = self.det.mul(&den);
+                        let na = dot(&self.g.n, &a);
+                        let scale = self.g.det.mul(&den);
                         let p = zip(&a, &b, |ai, bi| {
                             ai.mul(&den).sub(&c1.mul(bi).mul(&na)).div(&scale)
                         });
-                        let kappa = c1.mul_add(&dot(&p, &self.n), &c0);
+                        let kappa = c1.mul_add(&dot(&p, &self.g.n), &c0);
                         Ok(Some(self.solution(p, kappa)))
                     }
                 }
@@ -269,8 +314,8 @@ impl<'a, N: Radical> Scene<'a, N> {
                 let Some((d, along_normal)) = self.direction(z)? else {
                     return Ok(None);
                 };
-                let wd = sym_mul(&self.w_matrix, &d);
-                let a11 = dot(&self.n, &wd);
+                let wd = sym_mul(&self.g.w_matrix, &d);
+                let a11 = dot(&self.g.n, &wd);
                 let (p_scale, kappa) = match z {
                     Spin::Off => {
                         if sign(&a11)? == Ordering::Equal {
@@ -279,26 +324,26 @@ impl<'a, N: Radical> Scene<'a, N> {
                         (self.q.div(&a11), N::of(0.0))
                     }
                     Spin::Restitution => {
-                        let a12 = dot(&self.n, &self.w);
-                        let a21 = dot(&self.w, &d);
-                        let det2 = a11.mul_add(&self.k, &a12.mul(&a21).neg());
+                        let a12 = dot(&self.g.n, &self.g.w);
+                        let a21 = dot(&self.g.w, &d);
+                        let det2 = a11.mul_add(&self.g.k, &a12.mul(&a21).neg());
                         if sign(&det2)? == Ordering::Equal {
                             return Ok(None);
                         }
                         (
-                            self.q.mul_add(&self.k, &a12.mul(&ds).neg()).div(&det2),
+                            self.q.mul_add(&self.g.k, &a12.mul(&ds).neg()).div(&det2),
                             a11.mul_add(&ds, &a21.mul(&self.q).neg()).div(&det2),
                         )
                     }
                     Spin::Sliding => {
                         let (c0, c1) = self.twist_terms(t, et)?;
-                        let nw = dot(&self.n, &self.w);
-                        let den = c1.mul(&self.nu).mul_add(&nw, &a11);
+                        let nw = dot(&self.g.n, &self.g.w);
+                        let den = c1.mul(&self.g.nu).mul_add(&nw, &a11);
                         if sign(&den)? == Ordering::Equal {
                             return Ok(None);
                         }
                         let p_scale = nw.neg().mul_add(&c0, &self.q).div(&den);
-                        let kappa = c1.mul(&self.nu).mul_add(&p_scale, &c0);
+                        let kappa = c1.mul(&self.g.nu).mul_add(&p_scale, &c0);
                         (p_scale, kappa)
                     }
                 };
@@ -318,7 +363,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     #[inline(always)]
     pub(super) fn direction(&mut self, z: Spin) -> Exact<N, Option<(V3<N>, bool)>> {
         if self.law.c == 0.0 {
-            return Ok(Some((self.n.clone(), true)));
+            return Ok(Some((self.g.n.clone(), true)));
         }
         let slip = norm2(&self.ut);
         let (ws, size) = if sign(&slip)? == Ordering::Greater {
@@ -334,13 +379,13 @@ impl<'a, N: Radical> Scene<'a, N> {
                         input: Input::ImpulseRatio,
                     }));
                 }
-                return Ok(Some((self.n.clone(), true)));
+                return Ok(Some((self.g.n.clone(), true)));
             }
             (stick.pt, size)
         };
-        let root = self.nu.div(&size).sqrt().map_err(Fail::Undecided)?;
+        let root = self.g.nu.div(&size).sqrt().map_err(Fail::Undecided)?;
         let scale = N::of(self.law.c).mul(&root);
-        Ok(Some((axpy(&scale, &ws, &self.n), false)))
+        Ok(Some((axpy(&scale, &ws, &self.g.n), false)))
     }
 
     /// Whether the kept tangential branch holds: `P·n ≠ 0`, `ν |P_t|² ≤ f² (P·n)²`.
@@ -352,7 +397,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         }
         let f = N::of(self.law.cap);
         let cap = f.mul(&s.pn);
-        let room = cap.mul(&cap).sub(&self.nu.mul(&norm2(&s.pt)));
+        let room = cap.mul(&cap).sub(&self.g.nu.mul(&norm2(&s.pt)));
         Ok(sign(&room)? != Ordering::Less)
     }
 
@@ -366,11 +411,11 @@ impl<'a, N: Radical> Scene<'a, N> {
         if sign(&s.pn)? == Ordering::Equal {
             return Ok(false);
         }
-        let beyond = N::of(twist.restitution).mul(&self.s).div(&self.k).add(&s.kappa);
+        let beyond = N::of(twist.restitution).mul(&self.s).div(&self.g.k).add(&s.kappa);
         let cap = N::of(twist.friction)
             .mul(&N::of(twist.pitch_radius))
             .mul(&s.pn)
-            .div(&self.nu);
+            .div(&self.g.nu);
         Ok(sign(&cap.mul(&cap).sub(&beyond.mul(&beyond)))? != Ordering::Less)
     }
 
@@ -440,7 +485,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         if sign(&s.pn)? == Ordering::Equal {
             return Ok(None);
         }
-        let size = self.nu.mul(&norm2(&s.pt));
+        let size = self.g.nu.mul(&norm2(&s.pt));
         Ok(Some(out_times_sqrt(
             output,
             &N::of(1.0).div(&abs(&s.pn)?),
@@ -451,7 +496,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `x/|n|` correctly rounded.
     #[inline(always)]
     pub(super) fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
-        out_times_sqrt(output, &x.div(&self.nu), &self.nu)
+        out_times_sqrt(output, &x.div(&self.g.nu), &self.g.nu)
     }
 
     #[inline(always)]
@@ -466,8 +511,8 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `(U_t, u_t + U_t)` of an answer that changes `u` by `Δu`.
     #[inline(always)]
     pub(super) fn slip_after(&self, du: &V3<N>) -> (V3<N>, V3<N>) {
-        let dun = dot(du, &self.n).div(&self.nu);
-        let dut = tangential_part(du, &dun, &self.n, self.axis);
+        let dun = dot(du, &self.g.n).div(&self.g.nu);
+        let dut = tangential_part(du, &dun, &self.g.n, self.g.axis);
         (
             add(&self.ut, &dut),
             zip(&self.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
@@ -478,21 +523,38 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `u + U = (1 − e)(u·n) n/ν + (u_t + U_t)` (Kelvin and Tait, as Eq 8).
     #[inline(always)]
     pub(super) fn work(&self, s: &Solution<N>, e: &N, slip_sum: &V3<N>, spin_sum: &N) -> N {
-        let normal_work = N::of(1.0).sub(e).mul(&self.un).mul(&s.pn).div(&self.nu);
+        let normal_work = N::of(1.0).sub(e).mul(&self.un).mul(&s.pn).div(&self.g.nu);
         s.kappa.mul_add(spin_sum, &dot(&s.p, slip_sum).add(&normal_work))
+    }
+
+    /// The contact velocity at one instant (`u·n`, `u_t`, `s̃`) as outputs,
+    /// named by its normal, slip (x, y, z) and spin outputs.
+    #[inline(always)]
+    pub(super) fn contact_velocity_at(
+        &self,
+        [normal, x, y, z, spin]: [Output; 5],
+        un: &N,
+        ut: &V3<N>,
+        s: &N,
+    ) -> Exact<N, SpatialContactVelocity> {
+        Ok(SpatialContactVelocity {
+            normal: self.along(normal, un)?,
+            tangential: Self::vector_out([x, y, z], ut)?,
+            spin: self.along(spin, s)?,
+        })
     }
 
     /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
     /// adjugate and the Schur complement of `W`.
     #[inline(always)]
     pub(super) fn max_loss(&self) -> N {
-        let a = sym_mul(&self.adj, &self.u);
-        let mut twice = dot(&self.u, &a).div(&self.det);
+        let a = sym_mul(&self.g.adj, &self.u);
+        let mut twice = dot(&self.u, &a).div(&self.g.det);
         if self.twist.is_some() {
-            let b = sym_mul(&self.adj, &self.w);
-            let schur = self.k.mul_add(&self.det, &dot(&self.w, &b).neg());
-            let lever = self.s.mul_add(&self.det, &dot(&self.w, &a).neg());
-            twice = twice.add(&lever.mul(&lever).div(&self.det.mul(&schur)));
+            let b = sym_mul(&self.g.adj, &self.g.w);
+            let schur = self.g.k.mul_add(&self.g.det, &dot(&self.g.w, &b).neg());
+            let lever = self.s.mul_add(&self.g.det, &dot(&self.g.w, &a).neg());
+            twice = twice.add(&lever.mul(&lever).div(&self.g.det.mul(&schur)));
         }
         half::<N>().mul(&twice)
     }
@@ -500,9 +562,9 @@ impl<'a, N: Radical> Scene<'a, N> {
     #[inline(always)]
     pub(super) fn initial_energy(&self) -> N {
         let mut total = N::of(0.0);
-        for b in &self.bodies {
-            let linear = b.m.mul(&norm2(&b.v));
-            let angular = dot(&b.w, &sym_mul(&b.tensor, &b.w));
+        for (b, motion) in self.g.bodies.iter().zip(&self.motion) {
+            let linear = b.m.mul(&norm2(&motion.v));
+            let angular = dot(&motion.w, &sym_mul(&b.tensor, &motion.w));
             total = total.add(&half::<N>().mul(&linear.add(&angular)));
         }
         total
