@@ -11,6 +11,7 @@ use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::sweeps::CaseDto;
 use crate::quantity::{DIMENSIONLESS, Input, Output};
 
@@ -102,9 +103,9 @@ pub fn table() -> QuantityTable {
     get,
     path = "/v1/quantities",
     tag = "service",
-    responses((status = 200, description = "Every case's inputs and outputs", body = QuantityTable))
+    responses((status = 200, description = "Every case's inputs and outputs", body = QuantityTable), NotAcceptable)
 )]
-pub async fn quantities() -> Json<QuantityTable> {
+pub async fn quantities(_: AcceptsJson) -> Json<QuantityTable> {
     Json(table())
 }
 

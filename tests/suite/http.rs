@@ -1092,3 +1092,72 @@ async fn a_malformed_member_of_any_request_is_named_in_plain_words() {
         "{operations} operations, {members} members"
     );
 }
+
+/// Every operation that answers JSON alone (the document lists its 406)
+/// refuses an `Accept` without JSON with a 406 problem before it reads the
+/// body, and takes one that admits JSON at any quality; every other
+/// operation with a body either negotiates its own formats or has none.
+#[tokio::test]
+async fn json_only_operations_refuse_an_accept_without_json() {
+    let app = spawn_app(ServiceConfig::default()).await;
+    let doc: Value = serde_json::from_str(&openapi_json()).unwrap();
+    let mut checked = Vec::new();
+    for (path, item) in doc["paths"].as_object().unwrap() {
+        for (method, operation) in item.as_object().unwrap() {
+            let Some(refusal) = operation["responses"].get("406") else {
+                continue;
+            };
+            let only_json = refusal["description"]
+                .as_str()
+                .is_some_and(|d| d.contains("only format this operation answers"));
+            if !only_json {
+                continue;
+            }
+            let url = format!("{}{path}", app.base);
+            let send = |accept: &'static str| {
+                let request = match method.as_str() {
+                    "get" => app.client.get(&url),
+                    "post" => app.client.post(&url).json(&json!({})),
+                    other => panic!("{other} {path}"),
+                };
+                request.header("accept", accept).send()
+            };
+            for accept in ["text/csv", "image/svg+xml, text/*", "application/json;q=0"] {
+                let response = send(accept).await.unwrap();
+                let status = response.status();
+                let content_type = response.headers()["content-type"].to_str().unwrap().to_owned();
+                let body: Value = response.json().await.unwrap();
+                assert_problem(status, &content_type, &body, StatusCode::NOT_ACCEPTABLE, None);
+                assert!(
+                    body["detail"].as_str().unwrap().contains("application/json"),
+                    "{body}"
+                );
+            }
+            for accept in ["text/csv, application/json;q=0.1", "*/*", "application/*"] {
+                let status = send(accept).await.unwrap().status();
+                // The empty body's 422 for a post: past the negotiation.
+                let expected = if method == "get" {
+                    StatusCode::OK
+                } else {
+                    StatusCode::UNPROCESSABLE_ENTITY
+                };
+                assert_eq!(status, expected, "{method} {path} {accept}");
+            }
+            checked.push(format!("{method} {path}"));
+        }
+    }
+    checked.sort();
+    let expected = [
+        "get /v1/quantities",
+        "post /v1/fits/planar",
+        "post /v1/fits/spatial",
+        "post /v1/impacts/normal",
+        "post /v1/impacts/oblique",
+        "post /v1/impacts/planar",
+        "post /v1/impacts/spatial",
+        "post /v1/impacts/tangential",
+        "post /v1/impacts/torsional",
+        "post /v1/sweeps/plan",
+    ];
+    assert_eq!(checked, expected);
+}

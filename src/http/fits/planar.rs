@@ -8,6 +8,7 @@ use utoipa::ToSchema;
 
 use super::{EstimateDto, MeasuredDto};
 use crate::fit::{self, FitError, MeasuredChange};
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::extract::ApiJson;
 use crate::http::impacts::bodies::{LaminaDto, PlanarContactDto, VectorDto};
 use crate::http::problem::{ApiError, Problems};
@@ -113,9 +114,10 @@ pub struct PlanarFitResponse {
     path = "/v1/fits/planar",
     tag = "fits",
     request_body(content = PlanarFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The identified contact", body = PlanarFitResponse), Problems)
+    responses((status = 200, description = "The identified contact", body = PlanarFitResponse), Problems, NotAcceptable)
 )]
 pub async fn fits_planar(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<PlanarFitRequest>,
 ) -> Result<Json<PlanarFitResponse>, ApiError> {
     let problem = |pointer: &str, detail: String| {

@@ -8,8 +8,8 @@
 use axum::http::{HeaderMap, StatusCode};
 
 use crate::fit::{Observation, TangentialFit, TorsionalFit, TorsionalObservation};
+use crate::http::accept::choose;
 use crate::http::problem::ApiError;
-use crate::http::sweeps::choose;
 use crate::impact::{Law, PlanarImpact, Precision, TorsionalImpact, solve};
 use crate::outcome::Outputs;
 use crate::plot::{Curve, Figure, LegendEntry, Line, Marker, Markers, PALETTE, Shape};

@@ -8,6 +8,7 @@ use utoipa::ToSchema;
 
 use super::{EstimateDto, MeasuredDto};
 use crate::fit::{self, FitError, Measured, SpatialChange, SpatialLaw, SpatialObservation};
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{RegimeDto, TorsionalRegimeDto};
 use crate::http::extract::ApiJson;
 use crate::http::impacts::spatial::{SpatialBodyDto, SpatialContactDto};
@@ -226,9 +227,10 @@ fn members(law: &Law, torsion: Option<crate::impact::Twist>) -> serde_json::Valu
     path = "/v1/fits/spatial",
     tag = "fits",
     request_body(content = SpatialFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted law", body = SpatialFitResponse), Problems)
+    responses((status = 200, description = "The fitted law", body = SpatialFitResponse), Problems, NotAcceptable)
 )]
 pub async fn fits_spatial(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<SpatialFitRequest>,
 ) -> Result<Json<SpatialFitResponse>, ApiError> {
     if req.impacts.is_empty() {

@@ -9,6 +9,7 @@ use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of, law_problem};
 use crate::error::{ImpactError, Input};
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
@@ -212,9 +213,12 @@ pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiE
     path = "/v1/impacts/normal",
     tag = "impacts",
     request_body(content = NormalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
 )]
-pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json<PlanarResponse>, ApiError> {
+pub async fn impacts_normal(
+    _: AcceptsJson,
+    ApiJson(req): ApiJson<NormalRequest>,
+) -> Result<Json<PlanarResponse>, ApiError> {
     Ok(Json(respond_normal(req)?))
 }
 
@@ -224,9 +228,10 @@ pub async fn impacts_normal(ApiJson(req): ApiJson<NormalRequest>) -> Result<Json
     path = "/v1/impacts/oblique",
     tag = "impacts",
     request_body(content = ObliqueRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
 )]
 pub async fn impacts_oblique(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<ObliqueRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
     Ok(Json(respond_oblique(req)?))
@@ -238,9 +243,10 @@ pub async fn impacts_oblique(
     path = "/v1/impacts/tangential",
     tag = "impacts",
     request_body(content = TangentialRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems)
+    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
 )]
 pub async fn impacts_tangential(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<TangentialRequest>,
 ) -> Result<Json<PlanarResponse>, ApiError> {
     Ok(Json(respond_tangential(req)?))

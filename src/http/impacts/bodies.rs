@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of};
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
@@ -294,9 +295,10 @@ pub fn respond_planar_contact(req: PlanarContactRequest) -> Result<PlanarContact
     path = "/v1/impacts/planar",
     tag = "impacts",
     request_body(content = PlanarContactRequest, content_type = "application/json"),
-    responses((status = 200, description = "The contact's outcome", body = PlanarContactResponse), Problems)
+    responses((status = 200, description = "The contact's outcome", body = PlanarContactResponse), Problems, NotAcceptable)
 )]
 pub async fn impacts_planar(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<PlanarContactRequest>,
 ) -> Result<Json<PlanarContactResponse>, ApiError> {
     Ok(Json(respond_planar_contact(req)?))

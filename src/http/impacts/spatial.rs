@@ -8,6 +8,7 @@ use utoipa::ToSchema;
 use super::bodies::body_count;
 pub use super::inertia::{InertiaDto, PrincipalDto, QuaternionDto, SphereDto, TensorDto};
 use super::law::{KineticRestitutionDto, law_of};
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
@@ -328,9 +329,10 @@ pub fn respond_spatial_contact(req: SpatialContactRequest) -> Result<SpatialCont
     path = "/v1/impacts/spatial",
     tag = "impacts",
     request_body(content = SpatialContactRequest, content_type = "application/json"),
-    responses((status = 200, description = "The contact's outcome", body = SpatialContactResponse), Problems)
+    responses((status = 200, description = "The contact's outcome", body = SpatialContactResponse), Problems, NotAcceptable)
 )]
 pub async fn impacts_spatial(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<SpatialContactRequest>,
 ) -> Result<Json<SpatialContactResponse>, ApiError> {
     Ok(Json(respond_spatial_contact(req)?))

@@ -5,6 +5,7 @@ use axum::Json;
 use serde::Deserialize;
 use utoipa::ToSchema;
 
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{PrecisionDto, TorsionalResponse};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
@@ -103,9 +104,10 @@ pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, Api
     path = "/v1/impacts/torsional",
     tag = "impacts",
     request_body(content = TorsionalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), Problems)
+    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), Problems, NotAcceptable)
 )]
 pub async fn impacts_torsional(
+    _: AcceptsJson,
     ApiJson(req): ApiJson<TorsionalRequest>,
 ) -> Result<Json<TorsionalResponse>, ApiError> {
     Ok(Json(respond_torsional(req)?))

@@ -33,7 +33,6 @@ use self::arrow::{ArrowLayout, ArrowSink};
 pub(crate) use self::cases::on_sweep;
 pub use self::cases::{AnySweep, CaseDto, build};
 use self::encode::{RowWriter, table};
-pub(crate) use self::negotiate::choose;
 pub use self::negotiate::{Format, negotiate};
 pub use self::plan::{MAX_SHARDS, PlanRequest, SweepPlan, split};
 use self::reduce::CancelOnDrop;

@@ -1,7 +1,8 @@
-//! `Accept` negotiation: which format a sweep (or a fit) is answered in.
+//! `Accept` negotiation: which format a sweep is answered in.
 
-use axum::http::{HeaderMap, StatusCode, header};
+use axum::http::{HeaderMap, StatusCode};
 
+use crate::http::accept::choose;
 use crate::http::problem::ApiError;
 
 /// A response format of the sweep endpoint.
@@ -59,39 +60,4 @@ pub fn negotiate(headers: &HeaderMap) -> Result<Format, ApiError> {
              application/vnd.apache.arrow.stream or image/svg+xml",
         )
     })
-}
-
-/// The format of the `offered` media range that `Accept` ranks highest (the
-/// first listed among equal qualities); `default` without an `Accept` range;
-/// `None` when no offered range is acceptable.
-pub(crate) fn choose<T: Copy>(headers: &HeaderMap, offered: &[(&str, T)], default: T) -> Option<T> {
-    let mut ranges: Vec<(f32, T)> = Vec::new();
-    let mut any = false;
-    for value in headers.get_all(header::ACCEPT) {
-        let Ok(text) = value.to_str() else { continue };
-        for entry in text.split(',') {
-            let mut parts = entry.split(';');
-            let range = parts.next().unwrap_or("").trim().to_ascii_lowercase();
-            if range.is_empty() {
-                continue;
-            }
-            any = true;
-            let quality = parts
-                .filter_map(|p| p.trim().strip_prefix("q="))
-                .find_map(|q| q.trim().parse::<f32>().ok())
-                .unwrap_or(1.0);
-            let Some(&(_, format)) = offered.iter().find(|(r, _)| *r == range) else {
-                continue;
-            };
-            if quality > 0.0 {
-                ranges.push((quality, format));
-            }
-        }
-    }
-    if !any {
-        return Some(default);
-    }
-    // Stable: among equal qualities the first listed wins.
-    ranges.sort_by(|a, b| b.0.total_cmp(&a.0));
-    ranges.first().map(|&(_, f)| f)
 }

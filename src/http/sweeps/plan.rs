@@ -13,6 +13,7 @@ use super::negotiate::Format;
 use super::request::{SliceDto, SweepRequest, structure};
 use super::{AnySweep, build, on_sweep};
 use crate::http::ServiceConfig;
+use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::extract::ApiJson;
 use crate::http::problem::{ApiError, Problems};
 use crate::sweep::shard;
@@ -74,10 +75,12 @@ pub struct SweepPlan {
     request_body(content = PlanRequest, content_type = "application/json"),
     responses(
         (status = 200, description = "The sweep's ranges", body = SweepPlan),
-        Problems
+        Problems,
+        NotAcceptable
     )
 )]
 pub async fn plan(
+    _: AcceptsJson,
     State(config): State<Arc<ServiceConfig>>,
     ApiJson(request): ApiJson<PlanRequest>,
 ) -> Result<Json<SweepPlan>, ApiError> {
