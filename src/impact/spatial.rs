@@ -255,8 +255,8 @@ impl SpatialImpact {
 
 /// What a sweep's points share, formed once: each body's tensor checks
 /// when no axis changes that tensor, and the geometry in `fast`'s first
-/// field when no axis changes a mass, a tensor, a position, the contact
-/// point or the normal, and they are valid and in the fast range.
+/// field when axes change inputs but no mass, tensor, position, the contact
+/// point or the normal, and those are valid and in the fast range.
 #[derive(Clone)]
 pub struct Fixed {
     tensors: [Option<Result<()>>; 2],
@@ -423,8 +423,9 @@ impl Case for SpatialImpact {
             let finite = body.inertia.iter().all(|x| x.is_finite());
             (finite && !swept.iter().any(|i| tensor.contains(i))).then(|| body.check_tensor(k))
         });
+        // A single solve (nothing swept) forms its geometry in the field it runs in.
         let geometry_swept = self.geometry_inputs().any(|i| swept.contains(&i));
-        let geometry = if geometry_swept {
+        let geometry = if swept.is_empty() || geometry_swept {
             None
         } else {
             self.fast_geometry(&tensors)
@@ -579,6 +580,8 @@ mod tests {
                     };
                     let once = Solver::new(&base, &swept, Outputs::ALL, Precision::Fast);
                     assert!(once.fixed.geometry.is_some());
+                    // A single solve forms its own, in the field it runs in.
+                    assert!(base.fix(&[]).geometry.is_none());
                     let per_point = Solver::new(
                         &base,
                         &[&swept[..], &[Input::PositionAZ]].concat(),
