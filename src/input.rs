@@ -3,70 +3,10 @@
 //! them and the front door (`src/impact/`) validates them and says what
 //! each case reads; both depend on these types, neither on the other.
 
+pub use crate::law::Law;
 use crate::scene::{Contact, PlanarVelocity};
 
 // One body against a barrier, in the paper's frame (the normal, oblique and tangential endpoints).
-
-/// The tangential law of a rigid-body impact, with its coefficients.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Law {
-    /// No tangential impulse (`μ = 0`), kinematic restitution `e ∈ [0, 1]` (section 2.1).
-    Frictionless {
-        /// `e`.
-        restitution: f64,
-    },
-    /// A prescribed impulse ratio `μ = P_t / P_n` (Eqs 2, 4). Refused when it
-    /// gives `D ≤ 0` or creates energy; the error states the admissible interval.
-    ImpulseRatio {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `μ`.
-        impulse_ratio: f64,
-    },
-    /// Coulomb friction `f ≥ 0`: `μ = μ_c` when `|μ_c| ≤ f` (sticking,
-    /// `V_ct = 0`), otherwise `|μ| = f` opposing the initial slip (sliding).
-    Friction {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `f ≥ 0`.
-        friction: f64,
-    },
-    /// The bilinear tangential-restitution model (section 3, Eqs 20–27): the
-    /// ratio that gives `V_ct = −e_t v_ct` when `|μ| ≤ f`, else sliding.
-    TangentialRestitution {
-        /// `e ∈ [0, 1]`.
-        restitution: f64,
-        /// `f ≥ 0`.
-        friction: f64,
-        /// `e_t ∈ [−1, 1]` (`−1`: no tangential impulse from restitution).
-        tangential_restitution: f64,
-    },
-    /// The Appendix's two-phase kinetic restitution: `R = P_n^R / P_n^A`
-    /// (Eq 9) with the approach and rebound impulse ratios (Eqs 12, 13).
-    KineticRestitution {
-        /// `R ∈ [0, 1]`.
-        value: f64,
-        /// `μ_A = P_t^A / P_n^A`.
-        approach_impulse_ratio: f64,
-        /// `μ_R = P_t^R / P_n^R`.
-        rebound_impulse_ratio: f64,
-    },
-    /// The two-phase law with Coulomb friction in the approach phase (in
-    /// space only): the approach sticks when the impulse that ends it with
-    /// `U = 0` has `|P_t| ≤ f_A P_n`, else slides with `|P_t| = f_A P_n`; the
-    /// rebound is `R` times its normal impulse with ratio `μ_R` along the
-    /// approach's tangential direction. With `μ_R = 0` it is the contact of
-    /// time-stepping engines (friction capped by the compression impulse,
-    /// restitution a frictionless normal impulse).
-    KineticFriction {
-        /// `R ∈ [0, 1]`.
-        value: f64,
-        /// `f_A ≥ 0`.
-        approach_friction: f64,
-        /// `μ_R ≥ 0`.
-        rebound_impulse_ratio: f64,
-    },
-}
 
 /// The body of a planar impact.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -58,6 +58,7 @@ pub mod fit;
 pub mod impact;
 pub mod input;
 pub mod kernels;
+pub mod law;
 pub(crate) mod model;
 pub mod outcome;
 #[cfg(feature = "plot")]

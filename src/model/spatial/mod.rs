@@ -42,7 +42,8 @@ use std::cmp::Ordering;
 use super::{Exact, Fail, abs, half, out, out_times_sqrt, sign};
 use crate::arith::{Field, Radical};
 use crate::error::{ImpactError, Input, Output};
-use crate::input::{Law, RigidBody, SpatialImpact, Twist};
+use crate::input::{RigidBody, SpatialImpact, Twist};
+use crate::law::{Approach, Phases, Reading};
 use crate::outcome::{
     Outputs, PlanarEnergy, Regime, SPATIAL_BODY_OUTPUTS, SpatialBodyOutcome, SpatialContactVelocities,
     SpatialContactVelocity, SpatialImpulse, SpatialOutcome, TorsionalRegime,
