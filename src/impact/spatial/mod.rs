@@ -2,13 +2,14 @@
 //! inertia tensors, one tangential law and an optional twist law (the
 //! `spatial` endpoint). The model is `src/model/spatial/`.
 
+use std::any::Any;
 use std::cmp::Ordering;
 use std::fmt;
 
 use super::approach::{approach_bound, approaches};
 use super::{Arithmetic, Case, LooseFast, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::{Field, Fraction, Radical};
+use crate::arith::{Compensated, Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::input::{Law, RigidBody, SpatialImpact, Twist};
 use crate::model::Exact;
@@ -217,14 +218,33 @@ impl SpatialImpact {
 }
 
 /// What a sweep's points share, formed once: each body's tensor checks
-/// when no axis changes that tensor, and the geometry in `fast`'s first
-/// field when axes change inputs but no mass, tensor, position, the contact
-/// point or the normal, and those are valid and in the fast range.
+/// when no axis changes that tensor, and the geometry ([`Prepared`]) when
+/// axes change inputs but no mass, tensor, position, the contact point or
+/// the normal, and those are valid and in the fast range.
 #[derive(Clone)]
 pub struct Fixed {
     tensors: [Option<Result<()>>; 2],
     /// Boxed: a sweep holds one, and it is larger than the rest of the sweep.
-    geometry: Option<Box<Geometry<LooseFast>>>,
+    geometry: Option<Box<Prepared>>,
+}
+
+/// A sweep's geometry in the two fields that answer nearly every point:
+/// `fast`'s first (the running bound alone) and `exact`'s first (the
+/// compensated stage). Every other field forms its own per point.
+#[derive(Clone)]
+struct Prepared {
+    fast: Geometry<LooseFast>,
+    compensated: Geometry<Compensated>,
+}
+
+impl Prepared {
+    /// The geometry in `N`, if it is one of the two fields.
+    #[inline(always)]
+    fn get<N: Radical>(&self) -> Option<&Geometry<N>> {
+        let fast: &dyn Any = &self.fast;
+        let compensated: &dyn Any = &self.compensated;
+        fast.downcast_ref().or_else(|| compensated.downcast_ref())
+    }
 }
 
 impl fmt::Debug for Fixed {
@@ -247,9 +267,9 @@ impl SpatialImpact {
             .chain([Input::NormalX, Input::NormalY, Input::NormalZ])
     }
 
-    /// The geometry in `LooseFast` if the inputs it reads are valid (each
+    /// The geometry in both fields if the inputs it reads are valid (each
     /// tensor's check being `tensors`) and in the fast range, else `None`.
-    fn fast_geometry(&self, tensors: &[Option<Result<()>>; 2]) -> Option<Box<Geometry<LooseFast>>> {
+    fn prepared(&self, tensors: &[Option<Result<()>>; 2]) -> Option<Box<Prepared>> {
         let mut copy = *self;
         let inputs: Vec<f64> = self
             .geometry_inputs()
@@ -263,26 +283,27 @@ impl SpatialImpact {
                 .take(self.bodies().count())
                 .all(|t| matches!(t, Some(Ok(()))))
             && self.contact.normal.iter().any(|&x| x != 0.0);
-        valid.then(|| Box::new(crate::kernels::run(|| Geometry::new(self))))
+        valid.then(|| {
+            Box::new(crate::kernels::run(|| Prepared {
+                fast: Geometry::new(self),
+                compensated: Geometry::new(self),
+            }))
+        })
     }
 }
 
-/// The model of a validated contact, with its geometry in `fast`'s first
-/// field when a sweep formed it once.
+/// The model of a validated contact, with its geometry when a sweep formed
+/// it once.
 struct Space<'a> {
     impact: &'a SpatialImpact,
-    prepared: Option<&'a Geometry<LooseFast>>,
+    prepared: Option<&'a Prepared>,
     outputs: Outputs,
 }
 
 impl Model<SpatialOutcome> for Space<'_> {
     #[inline(always)]
     fn run<N: Radical>(&self, out: &mut SpatialOutcome) -> Exact<N, ()> {
-        // The prepared geometry serves the field it was formed in; every
-        // other field forms its own.
-        let prepared = self
-            .prepared
-            .and_then(|g| (g as &dyn std::any::Any).downcast_ref::<Geometry<N>>());
+        let prepared = self.prepared.and_then(Prepared::get::<N>);
         spatial::<N>(self.impact, prepared, self.outputs, out)
     }
 }
@@ -391,7 +412,7 @@ impl Case for SpatialImpact {
         let geometry = if swept.is_empty() || geometry_swept {
             None
         } else {
-            self.fast_geometry(&tensors)
+            self.prepared(&tensors)
         };
         Fixed { tensors, geometry }
     }

@@ -33,10 +33,11 @@ fn impact(b: Option<RigidBody>, torsion: Option<Twist>) -> SpatialImpact {
     }
 }
 
-/// A sweep's geometry formed once (in `fast`'s first field) answers
-/// every point as the geometry formed per point does: the same bits,
-/// regimes and refusals, in every law, with and without body B and a
-/// twist law; an axis on a geometry input forms it per point.
+/// A sweep's geometry formed once (in `fast`'s first field and the
+/// compensated stage's) answers every point as the geometry formed per
+/// point does, in both precisions: the same bits, regimes and refusals, in
+/// every law, with and without body B and a twist law; an axis on a
+/// geometry input forms it per point.
 #[test]
 fn a_geometry_formed_once_answers_as_one_formed_per_point() {
     let sphere = 2.0 / 3.0 * 0.057 * 0.033 * 0.033;
@@ -108,39 +109,41 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
                     law,
                     torsion,
                 };
-                let once = Solver::new(&base, &swept, Outputs::ALL, Precision::Fast);
-                assert!(once.fixed.geometry.is_some());
                 // A single solve forms its own, in the field it runs in.
                 assert!(base.fix(&[]).geometry.is_none());
-                let per_point = Solver::new(
-                    &base,
-                    &[&swept[..], &[Input::PositionAZ]].concat(),
-                    Outputs::ALL,
-                    Precision::Fast,
-                );
-                assert!(per_point.fixed.geometry.is_none());
-                for vx in [-3.0, 0.0, 0.5, 20.0] {
-                    for vz in [-10.0, -1e-3, 0.0, 1.0] {
-                        for wy in [-900.0, 0.0, 300.0] {
-                            let mut p = base;
-                            p.a.velocity[0] = vx;
-                            p.a.velocity[2] = vz;
-                            p.a.angular_velocity[1] = wy;
-                            let got = format!("{:?}", once.solve(&p));
-                            assert_eq!(got, format!("{:?}", per_point.solve(&p)), "{p:?}");
-                            let single = crate::impact::solve(&p, Outputs::ALL, Precision::Fast);
-                            assert_eq!(got, format!("{single:?}"), "{p:?}");
-                            answered += usize::from(single.is_ok());
+                for precision in [Precision::Fast, Precision::Exact] {
+                    let once = Solver::new(&base, &swept, Outputs::ALL, precision);
+                    assert!(once.fixed.geometry.is_some());
+                    let per_point = Solver::new(
+                        &base,
+                        &[&swept[..], &[Input::PositionAZ]].concat(),
+                        Outputs::ALL,
+                        precision,
+                    );
+                    assert!(per_point.fixed.geometry.is_none());
+                    for vx in [-3.0, 0.0, 0.5, 20.0] {
+                        for vz in [-10.0, -1e-3, 0.0, 1.0] {
+                            for wy in [-900.0, 0.0, 300.0] {
+                                let mut p = base;
+                                p.a.velocity[0] = vx;
+                                p.a.velocity[2] = vz;
+                                p.a.angular_velocity[1] = wy;
+                                let got = format!("{:?}", once.solve(&p));
+                                assert_eq!(got, format!("{:?}", per_point.solve(&p)), "{p:?}");
+                                let single = crate::impact::solve(&p, Outputs::ALL, precision);
+                                assert_eq!(got, format!("{single:?}"), "{p:?}");
+                                answered += usize::from(single.is_ok());
+                            }
                         }
                     }
                 }
             }
         }
     }
-    // Half the points approach (1,152 in all), and most of those are
-    // answered (the two-phase laws refuse a twist law); the rest are
-    // refused alike.
-    assert!(answered >= 400, "{answered}");
+    // Half the points approach (2,304 in all, both precisions), and most
+    // of those are answered (the two-phase laws refuse a twist law); the
+    // rest are refused alike.
+    assert!(answered >= 800, "{answered}");
 }
 
 /// A tensor checked once for a sweep gives its refusal at every point,
