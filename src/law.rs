@@ -1,9 +1,10 @@
 //! The contact laws: each law's variant with its coefficients, their checks,
-//! their slots (what a sweep's axis sets), and how the contact in space
-//! reads a law as branches of its tangential impulse. Adding a law is its
-//! variant here (every match below fails to compile until it learns it),
-//! its model in the plane (`src/model/contact.rs`), and its wire form
-//! (`src/http/impacts/law.rs`).
+//! their slots (what a sweep's axis sets), and how the model reads a law as
+//! branches of its tangential impulse ([`Reading`], one reading for the plane
+//! and space). Adding a law whose branches `Reading` can state is its variant
+//! here (every match below fails to compile until it learns it) and its wire
+//! form (`src/http/impacts/law.rs`); a new kind of branch is also model code
+//! (`src/model/contact.rs` in the plane, `src/model/spatial/` in space).
 
 use crate::error::{ImpactError, Input, Result, finite, in_range};
 use crate::outcome::Regime;
@@ -291,11 +292,12 @@ impl Law {
     }
 }
 
-// How the contact in space reads a law.
+// How the model reads a law.
 
-/// A law as the contact in space reads it: the coefficients of its kept and
-/// sliding branches, the regimes they report and the members their
-/// refusals point at (the model: `src/model/spatial/`).
+/// A law as the model reads it, in the plane and in space alike: the
+/// coefficients of its kept and sliding branches, the regimes they report and
+/// the members their refusals point at (conventions, rule 9), or its two
+/// phases (the models: `src/model/contact.rs`, `src/model/spatial/`).
 pub(crate) struct Reading {
     pub(crate) e: f64,
     /// `e_t` of the kept branch (0: stick), when the law has one.

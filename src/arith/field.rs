@@ -125,31 +125,40 @@ pub(crate) trait Field: Clone {
     }
 }
 
+/// `Field`'s constructor and ring operations (`of`, `add`, `sub`, `mul`,
+/// `neg`) as the implementing type's inherent methods of the same names
+/// (`exact` for `of`), each under the given inline attribute.
+macro_rules! forward_ring {
+    (#[$inline:meta]) => {
+        #[$inline]
+        fn of(x: f64) -> Self {
+            Self::exact(x)
+        }
+        #[$inline]
+        fn add(&self, o: &Self) -> Self {
+            Self::add(self, o)
+        }
+        #[$inline]
+        fn sub(&self, o: &Self) -> Self {
+            Self::sub(self, o)
+        }
+        #[$inline]
+        fn mul(&self, o: &Self) -> Self {
+            Self::mul(self, o)
+        }
+        #[$inline]
+        fn neg(&self) -> Self {
+            Self::neg(self)
+        }
+    };
+}
+
 impl Field for Compensated {
     type Undecided = Unsettled;
-    #[inline(always)]
-    fn of(x: f64) -> Self {
-        Self::exact(x)
-    }
-    #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
-        Self::add(self, o)
-    }
-    #[inline(always)]
-    fn sub(&self, o: &Self) -> Self {
-        Self::sub(self, o)
-    }
-    #[inline(always)]
-    fn mul(&self, o: &Self) -> Self {
-        Self::mul(self, o)
-    }
+    forward_ring!(#[inline(always)]);
     #[inline]
     fn div(&self, o: &Self) -> Self {
         Self::div(self, o)
-    }
-    #[inline(always)]
-    fn neg(&self) -> Self {
-        Self::neg(self)
     }
     #[inline]
     fn sign(&self) -> Result<Ordering, Unsettled> {
@@ -166,22 +175,7 @@ impl Field for Compensated {
 
 impl<const RUNNING: bool, const STATIC: bool> Field for Filtered<RUNNING, STATIC> {
     type Undecided = Uncertain;
-    #[inline(always)]
-    fn of(x: f64) -> Self {
-        Self::exact(x)
-    }
-    #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
-        Self::add(self, o)
-    }
-    #[inline(always)]
-    fn sub(&self, o: &Self) -> Self {
-        Self::sub(self, o)
-    }
-    #[inline(always)]
-    fn mul(&self, o: &Self) -> Self {
-        Self::mul(self, o)
-    }
+    forward_ring!(#[inline(always)]);
     #[inline(always)]
     fn mul_add(&self, b: &Self, c: &Self) -> Self {
         Self::mul_add(self, b, c)
@@ -194,10 +188,6 @@ impl<const RUNNING: bool, const STATIC: bool> Field for Filtered<RUNNING, STATIC
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
         debug_assert_eq!(rounded.to_bits(), (num / den).to_bits());
         Self::quotient_of(num, rounded)
-    }
-    #[inline(always)]
-    fn neg(&self) -> Self {
-        Self::neg(self)
     }
     #[inline(always)]
     fn sign(&self) -> Result<Ordering, Uncertain> {
@@ -307,29 +297,10 @@ pub(crate) struct Undecided;
 
 impl<const TRACK: bool> Field for Bounded<TRACK> {
     type Undecided = Undecided;
-    #[inline]
-    fn of(x: f64) -> Self {
-        Self::exact(x)
-    }
-    #[inline]
-    fn add(&self, o: &Self) -> Self {
-        Self::add(self, o)
-    }
-    #[inline]
-    fn sub(&self, o: &Self) -> Self {
-        Self::sub(self, o)
-    }
-    #[inline]
-    fn mul(&self, o: &Self) -> Self {
-        Self::mul(self, o)
-    }
+    forward_ring!(#[inline]);
     #[inline]
     fn div(&self, o: &Self) -> Self {
         Self::div(self, o)
-    }
-    #[inline]
-    fn neg(&self) -> Self {
-        Self::neg(self)
     }
     #[inline]
     fn sign(&self) -> Result<Ordering, Undecided> {

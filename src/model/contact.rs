@@ -17,7 +17,7 @@ use std::cmp::Ordering;
 use super::{Exact, abs, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::input::Law;
+use crate::law::{Approach, Law, Reading};
 use crate::outcome::{Outputs, Regime};
 
 /// A scene reduced to its contact space, in the field `N`.
@@ -108,7 +108,10 @@ pub(crate) struct Assembly<'a, N, T> {
     pub outputs: Outputs,
 }
 
-/// The law's answer in a scene: the shared law of every planar scene.
+/// The law's answer in a scene. The law is read as branches once for the
+/// plane and space ([`Reading`]): a single ratio `c` (frictionless, a
+/// prescribed `μ`), a kept target `U_t = −e_t u_t` capped by `f` with sliding
+/// beyond it, or two phases.
 #[inline(always)]
 pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
     sc: &S,
@@ -116,83 +119,35 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
-    match *law {
-        Law::Frictionless { restitution } => {
-            let e = N::of(restitution);
-            let answer = ratio_answer(sc, &e, &normal_target(sc, &e), 0.0, Input::Restitution)?;
+    let law = Reading::of(law, false);
+    if let Some(phases) = law.phases {
+        return match phases.approach {
+            Approach::Ratio(mu_a) => kinetic(sc, phases.r, mu_a, phases.rebound, outputs, out),
+            // Refused by the planar validation (`Law::validate_planar`).
+            Approach::Friction(_) => Err(ImpactError::Unavailable {
+                input: Input::ApproachFriction,
+                reason: "Coulomb friction within the approach phase is a law of the contact in space",
+            }
+            .into()),
+        };
+    }
+    let e = N::of(law.e);
+    match law.kept {
+        None => {
+            let answer = ratio_answer(sc, &e, &normal_target(sc, &e), law.c, law.pointers.0)?;
             finish(
                 sc,
                 &e,
                 None,
-                Regime::Frictionless,
+                law.regimes.0,
                 &answer,
                 None,
                 outputs,
-                Input::Restitution,
+                law.pointers.0,
                 out,
             )
         }
-        Law::ImpulseRatio {
-            restitution,
-            impulse_ratio,
-        } => {
-            let e = N::of(restitution);
-            let answer = ratio_answer(sc, &e, &normal_target(sc, &e), impulse_ratio, Input::ImpulseRatio)?;
-            finish(
-                sc,
-                &e,
-                None,
-                Regime::Prescribed,
-                &answer,
-                None,
-                outputs,
-                Input::ImpulseRatio,
-                out,
-            )
-        }
-        Law::Friction {
-            restitution,
-            friction,
-        } => bilinear(
-            sc,
-            &N::of(restitution),
-            friction,
-            0.0,
-            Regime::Sticking,
-            outputs,
-            out,
-        ),
-        Law::TangentialRestitution {
-            restitution,
-            friction,
-            tangential_restitution,
-        } => bilinear(
-            sc,
-            &N::of(restitution),
-            friction,
-            tangential_restitution,
-            Regime::Restitution,
-            outputs,
-            out,
-        ),
-        Law::KineticRestitution {
-            value,
-            approach_impulse_ratio,
-            rebound_impulse_ratio,
-        } => kinetic(
-            sc,
-            value,
-            approach_impulse_ratio,
-            rebound_impulse_ratio,
-            outputs,
-            out,
-        ),
-        // Refused by the planar validation (`Law::validate_planar`).
-        Law::KineticFriction { .. } => Err(ImpactError::Unavailable {
-            input: Input::ApproachFriction,
-            reason: "Coulomb friction within the approach phase is a law of the contact in space",
-        }
-        .into()),
+        Some(et) => bilinear(sc, &e, law.cap, et, &law, outputs, out),
     }
 }
 
@@ -307,7 +262,7 @@ fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Opti
 
 /// The bilinear law (section 3; Coulomb friction for `e_t = 0`): the
 /// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f`
-/// (regime `capped`), else sliding through separation with `|μ| = f`
+/// (the law's first regime), else sliding through separation with `|μ| = f`
 /// opposing the initial slip.
 #[inline(always)]
 fn bilinear<N: Field, S: ContactSpace<N>>(
@@ -315,10 +270,11 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     e: &N,
     f: f64,
     et: f64,
-    capped: Regime,
+    law: &Reading,
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
+    let (kept, sliding) = law.pointers;
     let qn = normal_target(sc, e);
     let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
     // For e_t = 0 the target ratio is the critical ratio μ_c itself.
@@ -328,17 +284,17 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
         let room = N::of(f).mul(&abs(&sdn)?).sub(&abs(&sdt)?);
         if sign(&room)? != Ordering::Less {
             if sign(&sdn)? == Ordering::Less {
-                return Err(sc.no_impulse_solution(mu_target.approx(), Input::Friction).into());
+                return Err(sc.no_impulse_solution(mu_target.approx(), kept).into());
             }
             return finish(
                 sc,
                 e,
                 None,
-                capped,
+                law.regimes.0,
                 &target,
                 known_critical,
                 outputs,
-                Input::Friction,
+                kept,
                 out,
             );
         }
@@ -353,16 +309,16 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
             _ => 1.0,
         },
     };
-    let sliding = ratio_answer(sc, e, &qn, direction * f + 0.0, Input::Friction)?;
+    let answer = ratio_answer(sc, e, &qn, direction * f + 0.0, sliding)?;
     finish(
         sc,
         e,
         None,
-        Regime::Sliding,
-        &sliding,
+        law.regimes.1,
+        &answer,
         known_critical,
         outputs,
-        Input::Friction,
+        sliding,
         out,
     )
 }

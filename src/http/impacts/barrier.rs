@@ -3,16 +3,13 @@
 //! into the solver's impact with `TryFrom` (a structural error names its
 //! member); handlers only solve and map back.
 
-use axum::Json;
 use serde::Deserialize;
 use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of, law_problem};
 use crate::error::{ImpactError, Input};
-use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
-use crate::http::extract::ApiJson;
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::{Law, PlanarBody, PlanarImpact, Precision, solve};
 use crate::outcome::Outputs;
 use crate::scene::PlanarVelocity;
@@ -207,49 +204,19 @@ pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiE
     respond_planar(PlanarImpact::from(&req), req.precision)
 }
 
-/// Normal impact of a point mass or a frictionless rigid body (section 2.1).
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/normal",
-    tag = "impacts",
-    request_body(content = NormalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_normal(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<NormalRequest>,
-) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(respond_normal(req)?))
+impact_operation! {
+    /// Normal impact of a point mass or a frictionless rigid body (section 2.1).
+    impacts_normal: "/v1/impacts/normal", NormalRequest => PlanarResponse ("The impact's outcome") by respond_normal
 }
 
-/// Oblique impact with a prescribed impulse ratio, Coulomb friction, or two-phase kinetic restitution (Eqs 1–19, Appendix).
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/oblique",
-    tag = "impacts",
-    request_body(content = ObliqueRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_oblique(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<ObliqueRequest>,
-) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(respond_oblique(req)?))
+impact_operation! {
+    /// Oblique impact with a prescribed impulse ratio, Coulomb friction, or two-phase kinetic restitution (Eqs 1–19, Appendix).
+    impacts_oblique: "/v1/impacts/oblique", ObliqueRequest => PlanarResponse ("The impact's outcome") by respond_oblique
 }
 
-/// Impact with tangential restitution: the bilinear model of Eqs 20–27.
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/tangential",
-    tag = "impacts",
-    request_body(content = TangentialRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = PlanarResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_tangential(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<TangentialRequest>,
-) -> Result<Json<PlanarResponse>, ApiError> {
-    Ok(Json(respond_tangential(req)?))
+impact_operation! {
+    /// Impact with tangential restitution: the bilinear model of Eqs 20–27.
+    impacts_tangential: "/v1/impacts/tangential", TangentialRequest => PlanarResponse ("The impact's outcome") by respond_tangential
 }
 
 #[cfg(test)]

@@ -1,16 +1,13 @@
 //! `POST /v1/impacts/planar`: body A against body B or a barrier, in world
 //! axes (the general planar contact).
 
-use axum::Json;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of};
-use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
-use crate::http::extract::ApiJson;
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision, solve};
 use crate::outcome::{BodiesOutcome, BodyOutcome, Outputs};
 
@@ -289,19 +286,9 @@ pub fn respond_planar_contact(req: PlanarContactRequest) -> Result<PlanarContact
     Ok(PlanarContactResponse::from_outcome(&outcome, precision))
 }
 
-/// Two laminae, or one against a barrier, in world axes: every law of the one-body endpoints.
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/planar",
-    tag = "impacts",
-    request_body(content = PlanarContactRequest, content_type = "application/json"),
-    responses((status = 200, description = "The contact's outcome", body = PlanarContactResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_planar(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<PlanarContactRequest>,
-) -> Result<Json<PlanarContactResponse>, ApiError> {
-    Ok(Json(respond_planar_contact(req)?))
+impact_operation! {
+    /// Two laminae, or one against a barrier, in world axes: every law of the one-body endpoints.
+    impacts_planar: "/v1/impacts/planar", PlanarContactRequest => PlanarContactResponse ("The contact's outcome") by respond_planar_contact
 }
 
 #[cfg(test)]

@@ -4,6 +4,32 @@
 //! barrier in the plane, world axes: `/v1/impacts/planar`) and `spatial` —
 //! and `law`, the wire form of a contact law that all of them read.
 
+/// An impact operation: `POST $path` with a JSON `$request`, answered by
+/// `$respond` as a JSON `$response` described as `$answer`, with its OpenAPI
+/// operation (the doc comment is its summary and description).
+macro_rules! impact_operation {
+    ($(#[$doc:meta])* $name:ident: $path:tt, $request:ident => $response:ident ($answer:tt) by $respond:ident) => {
+        $(#[$doc])*
+        #[utoipa::path(
+            post,
+            path = $path,
+            tag = "impacts",
+            request_body(content = $request, content_type = "application/json"),
+            responses(
+                (status = 200, description = $answer, body = $response),
+                crate::http::problem::Problems,
+                crate::http::accept::NotAcceptable
+            )
+        )]
+        pub async fn $name(
+            _: crate::http::accept::AcceptsJson,
+            crate::http::extract::ApiJson(req): crate::http::extract::ApiJson<$request>,
+        ) -> Result<axum::Json<$response>, crate::http::problem::ApiError> {
+            Ok(axum::Json($respond(req)?))
+        }
+    };
+}
+
 pub mod barrier;
 pub mod bodies;
 pub mod inertia;

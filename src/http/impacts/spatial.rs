@@ -1,17 +1,14 @@
 //! `POST /v1/impacts/spatial`: body A against body B or a barrier in space,
 //! with inertia tensors and an optional twist law.
 
-use axum::Json;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::bodies::body_count;
 pub use super::inertia::{InertiaDto, PrincipalDto, QuaternionDto, SphereDto, TensorDto};
 use super::law::{KineticRestitutionDto, law_of};
-use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
-use crate::http::extract::ApiJson;
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::{Precision, RigidBody, SpatialContact, SpatialImpact, Twist, solve};
 use crate::outcome::{Outputs, SpatialBodyOutcome, SpatialContactVelocity, SpatialOutcome};
 
@@ -322,20 +319,10 @@ pub fn respond_spatial_contact(req: SpatialContactRequest) -> Result<SpatialCont
     Ok(SpatialContactResponse::from_outcome(&outcome, precision))
 }
 
-/// Two rigid bodies, or one against a barrier, in space: inertia tensors, slip
-/// in any direction, the twist law about the normal.
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/spatial",
-    tag = "impacts",
-    request_body(content = SpatialContactRequest, content_type = "application/json"),
-    responses((status = 200, description = "The contact's outcome", body = SpatialContactResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_spatial(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<SpatialContactRequest>,
-) -> Result<Json<SpatialContactResponse>, ApiError> {
-    Ok(Json(respond_spatial_contact(req)?))
+impact_operation! {
+    /// Two rigid bodies, or one against a barrier, in space: inertia tensors, slip
+    /// in any direction, the twist law about the normal.
+    impacts_spatial: "/v1/impacts/spatial", SpatialContactRequest => SpatialContactResponse ("The contact's outcome") by respond_spatial_contact
 }
 
 #[cfg(test)]

@@ -1,14 +1,11 @@
 //! `POST /v1/impacts/torsional`: a body spinning about the contact normal
 //! (section 4, Eqs 28–31).
 
-use axum::Json;
 use serde::Deserialize;
 use utoipa::ToSchema;
 
-use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{PrecisionDto, TorsionalResponse};
-use crate::http::extract::ApiJson;
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::{Precision, TorsionalImpact, solve};
 use crate::outcome::Outputs;
 
@@ -98,19 +95,9 @@ pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, Api
     Ok(TorsionalResponse::from_outcome(&outcome, precision))
 }
 
-/// Impact with torsional restitution: the bilinear model of Eqs 28–31.
-#[utoipa::path(
-    post,
-    path = "/v1/impacts/torsional",
-    tag = "impacts",
-    request_body(content = TorsionalRequest, content_type = "application/json"),
-    responses((status = 200, description = "The impact's outcome", body = TorsionalResponse), Problems, NotAcceptable)
-)]
-pub async fn impacts_torsional(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<TorsionalRequest>,
-) -> Result<Json<TorsionalResponse>, ApiError> {
-    Ok(Json(respond_torsional(req)?))
+impact_operation! {
+    /// Impact with torsional restitution: the bilinear model of Eqs 28–31.
+    impacts_torsional: "/v1/impacts/torsional", TorsionalRequest => TorsionalResponse ("The impact's outcome") by respond_torsional
 }
 
 #[cfg(test)]
