@@ -83,3 +83,31 @@ pub enum NotAcceptable {
     )]
     Json(Problem),
 }
+
+/// An operation that answers JSON alone: `POST $path` under `$tag` with a
+/// JSON `$request`, answered by `$respond` as a JSON `$response` described as
+/// `$answer`, with its OpenAPI operation (the doc comment is its summary and
+/// description; its refusals are [`Problems`](crate::http::problem::Problems)
+/// and [`NotAcceptable`]).
+macro_rules! json_operation {
+    ($(#[$doc:meta])* $name:ident: $path:tt in $tag:tt, $request:ident => $response:ident ($answer:tt) by $respond:ident) => {
+        $(#[$doc])*
+        #[utoipa::path(
+            post,
+            path = $path,
+            tag = $tag,
+            request_body(content = $request, content_type = "application/json"),
+            responses(
+                (status = 200, description = $answer, body = $response),
+                crate::http::problem::Problems,
+                crate::http::accept::NotAcceptable
+            )
+        )]
+        pub async fn $name(
+            _: crate::http::accept::AcceptsJson,
+            crate::http::extract::ApiJson(req): crate::http::extract::ApiJson<$request>,
+        ) -> Result<axum::Json<$response>, crate::http::problem::ApiError> {
+            Ok(axum::Json($respond(req)?))
+        }
+    };
+}

@@ -5,6 +5,7 @@
 //! shedding at the concurrency limit → timeout → body limit → router →
 //! `ApiJson` extractor (DTO) → solver → response DTO.
 
+#[macro_use]
 pub mod accept;
 mod auth;
 pub mod collect;

@@ -23,7 +23,7 @@
 
 use std::cmp::Ordering;
 
-use super::contact::{Assembly, ContactSpace, under_law};
+use super::contact::{Assembly, ContactSpace, Reduced, under_law};
 use super::{Exact, half, out, out_times_sqrt, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
@@ -117,13 +117,9 @@ struct Scene<N> {
     /// Body A, and B when `count` is 2 (else a copy of A, unused).
     bodies: [Body<N>; 2],
     count: usize,
-    un: N,
-    ut: N,
-    s: N,
+    /// `ũ_n`, `ũ_t`, `s = −ũ_n` and `W̃`.
+    reduced: Reduced<N>,
     alpha: N,
-    wnn: N,
-    wnt: N,
-    wtt: N,
     inv_det: N,
 }
 
@@ -171,12 +167,14 @@ impl<N: Field> Scene<N> {
             det = det.add(&cross.mul(&cross).mul(&a.inv_i).mul(&b.inv_i));
         }
         Scene {
-            s: un.neg(),
-            un,
-            ut,
-            wnn: alpha.add(&wnn),
-            wnt,
-            wtt: alpha.add(&wtt),
+            reduced: Reduced {
+                s: un.neg(),
+                un,
+                ut,
+                wnn: alpha.add(&wnn),
+                wnt,
+                wtt: alpha.add(&wtt),
+            },
             inv_det: one.div(&det),
             alpha,
             nn,
@@ -199,11 +197,12 @@ impl<N: Field> Scene<N> {
     fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
-        let mut adjugate = self.alpha.mul(&self.un.mul_add(&self.un, &self.ut.mul(&self.ut)));
+        let Reduced { un, ut, .. } = &self.reduced;
+        let mut adjugate = self.alpha.mul(&un.mul_add(un, &ut.mul(ut)));
         for b in &self.bodies[..self.count] {
             let linear = b.v[0].mul_add(&b.v[0], &b.v[1].mul(&b.v[1])).mul(&b.m);
             initial = initial.add(&h.mul(&b.inertia.mul(&b.w).mul_add(&b.w, &linear)));
-            let lever = b.rho[1].mul_add(&self.un, &b.rho[0].mul(&self.ut).neg());
+            let lever = b.rho[1].mul_add(un, &b.rho[0].mul(ut).neg());
             adjugate = adjugate.add(&lever.mul(&lever).mul(&b.inv_i));
         }
         let loss = h.mul(work).neg();
@@ -225,32 +224,12 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     type Outcome = BodiesOutcome;
 
     #[inline(always)]
-    fn un(&self) -> &N {
-        &self.un
-    }
-    #[inline(always)]
-    fn ut(&self) -> &N {
-        &self.ut
-    }
-    #[inline(always)]
-    fn s(&self) -> &N {
-        &self.s
-    }
-    #[inline(always)]
-    fn wnn(&self) -> &N {
-        &self.wnn
-    }
-    #[inline(always)]
-    fn wnt(&self) -> &N {
-        &self.wnt
-    }
-    #[inline(always)]
-    fn wtt(&self) -> &N {
-        &self.wtt
+    fn reduced(&self) -> &Reduced<N> {
+        &self.reduced
     }
     #[inline(always)]
     fn ratio_coefficient(&self, mu: f64) -> (N, ()) {
-        (N::of(mu).mul_add(&self.wnt, &self.wnn), ())
+        (N::of(mu).mul_add(&self.reduced.wnt, &self.reduced.wnn), ())
     }
     /// `D(μ) = (A + μ B) / α`: the one-body `D` for a barrier.
     fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError {
@@ -282,9 +261,13 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
             impulse_ratio: mu.approx(),
             energy_loss: -0.5 * work.approx(),
             admissible: crate::scene::admissible_interval(
-                [self.wnn.approx(), self.wnt.approx(), self.wtt.approx()],
-                self.s.approx(),
-                self.ut.approx(),
+                [
+                    self.reduced.wnn.approx(),
+                    self.reduced.wnt.approx(),
+                    self.reduced.wtt.approx(),
+                ],
+                self.reduced.s.approx(),
+                self.reduced.ut.approx(),
                 e.approx(),
             ),
         }
@@ -319,8 +302,8 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
         }
         let contact_velocity = ContactVelocities {
             initial: ContactVelocity {
-                normal: self.along(Output::InitialNormalContactVelocity, &self.un)?,
-                tangential: self.along(Output::InitialTangentialContactVelocity, &self.ut)?,
+                normal: self.along(Output::InitialNormalContactVelocity, &self.reduced.un)?,
+                tangential: self.along(Output::InitialTangentialContactVelocity, &self.reduced.ut)?,
             },
             r#final: ContactVelocity {
                 normal: self.along(Output::FinalNormalContactVelocity, &a.un)?,
@@ -372,10 +355,10 @@ pub(crate) fn bodies<N: Field>(
     out: &mut BodiesOutcome,
 ) -> Exact<N, ()> {
     let scene = Scene::<N>::new(impact);
-    if sign(&scene.s)? != Ordering::Greater {
+    if sign(&scene.reduced.s)? != Ordering::Greater {
         return Err(ImpactError::NotApproaching {
             input: Input::VelocityA,
-            normal_contact_velocity: scene.un.approx() / scene.nn.approx().sqrt(),
+            normal_contact_velocity: scene.reduced.un.approx() / scene.nn.approx().sqrt(),
         }
         .into());
     }

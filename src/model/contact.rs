@@ -20,6 +20,23 @@ use crate::error::{ImpactError, Input, Output};
 use crate::law::{Approach, Law, Reading};
 use crate::outcome::{Outputs, Regime};
 
+/// A scene's contact space in the field `N`: the approach and the slip, and
+/// `W̃ = [[A, B], [B, C]]` in `(n, t)` order.
+pub(crate) struct Reduced<N> {
+    /// `u_n < 0`.
+    pub un: N,
+    /// `u_t`.
+    pub ut: N,
+    /// `s = −u_n > 0`.
+    pub s: N,
+    /// `A = W̃_nn`.
+    pub wnn: N,
+    /// `B = W̃_nt`.
+    pub wnt: N,
+    /// `C = W̃_tt`.
+    pub wtt: N,
+}
+
 /// A scene reduced to its contact space, in the field `N`.
 ///
 /// `W̃ = [[A, B], [B, C]]` in `(n, t)` order; `q` is the impulse in the scene's
@@ -30,18 +47,8 @@ pub(crate) trait ContactSpace<N: Field> {
     type Turn: Clone;
     /// The outcome the scene answers.
     type Outcome;
-    /// `u_n < 0`.
-    fn un(&self) -> &N;
-    /// `u_t`.
-    fn ut(&self) -> &N;
-    /// `s = −u_n > 0`.
-    fn s(&self) -> &N;
-    /// `A = W̃_nn`.
-    fn wnn(&self) -> &N;
-    /// `B = W̃_nt`.
-    fn wnt(&self) -> &N;
-    /// `C = W̃_tt`.
-    fn wtt(&self) -> &N;
+    /// The scene's approach, slip and `W̃`.
+    fn reduced(&self) -> &Reduced<N>;
     /// `A + μ B` (the scaled `D(μ)`, after Eq 7) and the turn per unit of it.
     fn ratio_coefficient(&self, mu: f64) -> (N, Self::Turn);
     /// The refusal of ratio `μ` whose `A + μ B ≤ 0`.
@@ -154,7 +161,8 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
 /// `q_n = (1 + e) s`: the change of `u_n` that restitution `e` asks (Eq 1).
 #[inline(always)]
 fn normal_target<N: Field, S: ContactSpace<N>>(sc: &S, e: &N) -> N {
-    N::of(1.0).add(e).mul(sc.s())
+    let cs = sc.reduced();
+    N::of(1.0).add(e).mul(&cs.s)
 }
 
 /// `A + μ B` with its turn, refused (naming `law`) unless positive.
@@ -178,12 +186,13 @@ fn ratio_parts<N: Field, S: ContactSpace<N>>(
     lever: &S::Turn,
     d: &N,
 ) -> (N, N, S::Turn, N) {
+    let cs = sc.reduced();
     let mu = N::of(mu);
     let per = qn.div(d);
     let dn = sc.ratio_normal(qn, &per);
     let dt = mu.mul(&dn);
     let turn = sc.ratio_turn(lever, &per);
-    let dut = mu.mul_add(sc.wtt(), sc.wnt()).mul(&per);
+    let dut = mu.mul_add(&cs.wtt, &cs.wnt).mul(&per);
     (dn, dt, turn, dut)
 }
 
@@ -197,6 +206,7 @@ fn ratio_answer<N: Field, S: ContactSpace<N>>(
     mu: f64,
     law: Input,
 ) -> Exact<N, Answer<N, S::Turn>> {
+    let cs = sc.reduced();
     let (lever, d) = positive_coefficient(sc, mu, law)?;
     let (dn, dt, turn, dut) = ratio_parts(sc, qn, mu, &lever, &d);
     Ok(Answer {
@@ -204,10 +214,10 @@ fn ratio_answer<N: Field, S: ContactSpace<N>>(
         dn,
         dt,
         turn,
-        un: e.mul(sc.un()).neg(),
-        normal_sum: N::of(1.0).sub(e).mul(sc.un()),
-        tangential_sum: N::of(2.0).mul_add(sc.ut(), &dut),
-        ut: sc.ut().add(&dut),
+        un: e.mul(&cs.un).neg(),
+        normal_sum: N::of(1.0).sub(e).mul(&cs.un),
+        tangential_sum: N::of(2.0).mul_add(&cs.ut, &dut),
+        ut: cs.ut.add(&dut),
         mu: Some(N::of(mu)),
     })
 }
@@ -216,9 +226,10 @@ fn ratio_answer<N: Field, S: ContactSpace<N>>(
 /// (`adj W̃ Δu`) that changes `u_n` by `q_n` and `u_t` by `−q_t`.
 #[inline(always)]
 fn scaled_impulses<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, qt: &N) -> (N, N) {
+    let cs = sc.reduced();
     (
-        sc.wtt().mul_add(qn, &sc.wnt().mul(qt)),
-        sc.wnt().neg().mul_add(qn, &sc.wnn().mul(qt).neg()),
+        cs.wtt.mul_add(qn, &cs.wnt.mul(qt)),
+        cs.wnt.neg().mul_add(qn, &cs.wnn.mul(qt).neg()),
     )
 }
 
@@ -233,15 +244,16 @@ fn target_answer<N: Field, S: ContactSpace<N>>(
     qn: &N,
     et: f64,
 ) -> Exact<N, Target<N, S::Turn>> {
-    let qt = N::of(1.0).add(&N::of(et)).mul(sc.ut());
+    let cs = sc.reduced();
+    let qt = N::of(1.0).add(&N::of(et)).mul(&cs.ut);
     let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
     let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
     let inv = &sc.inv_det();
     let answer = Answer {
-        un: e.mul(sc.un()).neg(),
-        ut: N::of(et).mul(sc.ut()).neg(),
-        normal_sum: N::of(1.0).sub(e).mul(sc.un()),
-        tangential_sum: N::of(1.0).sub(&N::of(et)).mul(sc.ut()),
+        un: e.mul(&cs.un).neg(),
+        ut: N::of(et).mul(&cs.ut).neg(),
+        normal_sum: N::of(1.0).sub(e).mul(&cs.un),
+        tangential_sum: N::of(1.0).sub(&N::of(et)).mul(&cs.ut),
         dn: sc.target_normal(qn, &sdn, inv),
         dt: sdt.mul(inv),
         turn: sc.target_turn(qn, &qt, inv),
@@ -256,7 +268,8 @@ fn target_answer<N: Field, S: ContactSpace<N>>(
 /// `d_c = 0`), `None` if its `Δn = 0`.
 #[inline(always)]
 fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Option<N>> {
-    let (sdn, sdt) = scaled_impulses(sc, qn, sc.ut());
+    let cs = sc.reduced();
+    let (sdn, sdt) = scaled_impulses(sc, qn, &cs.ut);
     Ok((sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn)))
 }
 
@@ -274,6 +287,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
+    let cs = sc.reduced();
     let (kept, sliding) = law.pointers;
     let qn = normal_target(sc, e);
     let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
@@ -301,7 +315,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     }
     // Sliding opposes the slip; with no initial slip it follows μ_target
     // (which exists then: u_t = 0 gives Δn > 0).
-    let direction = match sign(sc.ut())? {
+    let direction = match sign(&cs.ut)? {
         Ordering::Greater => -1.0,
         Ordering::Less => 1.0,
         Ordering::Equal => match (sign(&sdt)?, sign(&sdn)?) {
@@ -335,6 +349,7 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
+    let cs = sc.reduced();
     let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachImpulseRatio)?;
     let rebound = if r > 0.0 {
         Some(positive_coefficient(sc, mu_r, Input::ReboundImpulseRatio)?)
@@ -345,10 +360,10 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
         Some((_, d_r)) => N::of(r).mul(&d_r.div(&d_a)),
         None => N::of(0.0),
     };
-    let approach = ratio_parts(sc, sc.s(), mu_a, &lever_a, &d_a);
+    let approach = ratio_parts(sc, &cs.s, mu_a, &lever_a, &d_a);
     let (dn, dt, turn, dut) = match &rebound {
         Some((lever_r, d_r)) => {
-            let rebound = ratio_parts(sc, &e.mul(sc.s()), mu_r, lever_r, d_r);
+            let rebound = ratio_parts(sc, &e.mul(&cs.s), mu_r, lever_r, d_r);
             (
                 approach.0.add(&rebound.0),
                 approach.1.add(&rebound.1),
@@ -361,10 +376,10 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
     let answer = Answer {
         qn: normal_target(sc, &e),
         mu: Some(dt.div(&dn)),
-        un: e.mul(sc.un()).neg(),
-        normal_sum: N::of(1.0).sub(&e).mul(sc.un()),
-        tangential_sum: N::of(2.0).mul_add(sc.ut(), &dut),
-        ut: sc.ut().add(&dut),
+        un: e.mul(&cs.un).neg(),
+        normal_sum: N::of(1.0).sub(&e).mul(&cs.un),
+        tangential_sum: N::of(2.0).mul_add(&cs.ut, &dut),
+        ut: cs.ut.add(&dut),
         dn,
         dt,
         turn,

@@ -14,7 +14,7 @@
 //! Impulses are carried per unit mass (`Δn = P_n / m`, `Δt = P_t / m`) and
 //! scaled by `k²` so that no `1/k²` can overflow.
 
-use super::contact::{Assembly, ContactSpace, critical_output, under_law};
+use super::contact::{Assembly, ContactSpace, Reduced, critical_output, under_law};
 use super::{Exact, half, out};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
@@ -34,16 +34,8 @@ struct Scene<'a, N> {
     vn: N,
     vt: N,
     w: N,
-    vcn: N,
-    vct: N,
-    /// `s = −v_cn > 0`.
-    s: N,
-    /// `k² + d_c²`.
-    k2_dc2: N,
-    /// `k² + d_d²`.
-    k2_dd2: N,
-    /// `−d_c d_d`.
-    wnt: N,
+    /// `v_cn`, `v_ct`, `s = −v_cn` and `W̃ = [[k² + d_c², −d_c d_d], [−d_c d_d, k² + d_d²]]`.
+    reduced: Reduced<N>,
     /// `S = k² + d_c² + d_d²`.
     total: N,
 }
@@ -67,11 +59,15 @@ impl<'a, N: Field> Scene<'a, N> {
         let total = k2_dc2.add(&dd2);
         Scene {
             fast,
-            s: vcn.neg(),
-            k2_dd2: k2.add(&dd2),
-            wnt: dc.mul(&dd).neg(),
+            reduced: Reduced {
+                s: vcn.neg(),
+                wtt: k2.add(&dd2),
+                wnt: dc.mul(&dd).neg(),
+                wnn: k2_dc2,
+                un: vcn,
+                ut: vct,
+            },
             total,
-            k2_dc2,
             k2,
             m,
             inertia,
@@ -80,8 +76,6 @@ impl<'a, N: Field> Scene<'a, N> {
             vn,
             vt,
             w,
-            vcn,
-            vct,
         }
     }
 
@@ -108,28 +102,8 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     type Outcome = PlanarOutcome;
 
     #[inline(always)]
-    fn un(&self) -> &N {
-        &self.vcn
-    }
-    #[inline(always)]
-    fn ut(&self) -> &N {
-        &self.vct
-    }
-    #[inline(always)]
-    fn s(&self) -> &N {
-        &self.s
-    }
-    #[inline(always)]
-    fn wnn(&self) -> &N {
-        &self.k2_dc2
-    }
-    #[inline(always)]
-    fn wnt(&self) -> &N {
-        &self.wnt
-    }
-    #[inline(always)]
-    fn wtt(&self) -> &N {
-        &self.k2_dd2
+    fn reduced(&self) -> &Reduced<N> {
+        &self.reduced
     }
 
     /// `(D(μ) k², d_c − μ d_d)` with `D(μ) k² = k² + d_c (d_c − μ d_d)` (after Eq 7).
@@ -245,12 +219,12 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
         // hide a value below the f64 range (or carry the sign of a −0 input).
         let initial = ContactVelocity {
             normal: if fused.normal == 0.0 {
-                out(Output::InitialNormalContactVelocity, &self.vcn)?
+                out(Output::InitialNormalContactVelocity, &self.reduced.un)?
             } else {
                 fused.normal
             },
             tangential: if fused.tangential == 0.0 {
-                out(Output::InitialTangentialContactVelocity, &self.vct)?
+                out(Output::InitialTangentialContactVelocity, &self.reduced.ut)?
             } else {
                 fused.tangential
             },
@@ -292,8 +266,9 @@ impl<N: Field> Scene<'_, N> {
         let loss_per_mass = half::<N>().mul(work).neg();
         let loss = self.m.mul(&loss_per_mass);
         let inv_total = self.inv_total();
-        let speed2 = self.vcn.mul_add(&self.vcn, &self.vct.mul(&self.vct));
-        let lever = self.dd.mul_add(&self.vcn, &self.dc.mul(&self.vct));
+        let Reduced { un, ut, .. } = &self.reduced;
+        let speed2 = un.mul_add(un, &ut.mul(ut));
+        let lever = self.dd.mul_add(un, &self.dc.mul(ut));
         let max_per_mass = half::<N>().mul(
             &self
                 .k2

@@ -1,17 +1,14 @@
 //! `POST /v1/fits/planar`: one planar contact reconstructed from the measured
 //! velocity changes of its bodies (see [`crate::fit::planar`]).
 
-use axum::Json;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::{EstimateDto, MeasuredDto};
 use crate::fit::{self, FitError, MeasuredChange};
-use crate::http::accept::{AcceptsJson, NotAcceptable};
-use crate::http::extract::ApiJson;
 use crate::http::impacts::bodies::{LaminaDto, PlanarContactDto, VectorDto};
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::{Lamina, PlanarContact};
 
 /// A measured vector.
@@ -108,18 +105,13 @@ pub struct PlanarFitResponse {
     pub degrees_of_freedom: usize,
 }
 
-/// Identify e and μ (and, if asked, the normal) of a two-body contact from measured velocity changes.
-#[utoipa::path(
-    post,
-    path = "/v1/fits/planar",
-    tag = "fits",
-    request_body(content = PlanarFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The identified contact", body = PlanarFitResponse), Problems, NotAcceptable)
-)]
-pub async fn fits_planar(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<PlanarFitRequest>,
-) -> Result<Json<PlanarFitResponse>, ApiError> {
+json_operation! {
+    /// Identify e and μ (and, if asked, the normal) of a two-body contact from measured velocity changes.
+    fits_planar: "/v1/fits/planar" in "fits", PlanarFitRequest => PlanarFitResponse ("The identified contact") by respond_planar_fit
+}
+
+/// The fit of a planar reconstruction request.
+pub fn respond_planar_fit(req: PlanarFitRequest) -> Result<PlanarFitResponse, ApiError> {
     let problem = |pointer: &str, detail: String| {
         ApiError::new(
             StatusCode::UNPROCESSABLE_ENTITY,
@@ -166,7 +158,7 @@ pub async fn fits_planar(
         } => problem("/fit_normal", e.to_string()),
         _ => problem("/measured", e.to_string()),
     })?;
-    Ok(Json(PlanarFitResponse {
+    Ok(PlanarFitResponse {
         restitution: fit.restitution.into(),
         impulse_ratio: fit.impulse_ratio.into(),
         normal: fit.normal.map(|(direction, angle)| FittedNormalDto {
@@ -178,5 +170,5 @@ pub async fn fits_planar(
         residuals: fit.residuals,
         chi_squared: fit.chi_squared,
         degrees_of_freedom: fit.degrees_of_freedom,
-    }))
+    })
 }

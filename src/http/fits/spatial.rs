@@ -1,18 +1,15 @@
 //! `POST /v1/fits/spatial`: a spatial law's coefficients fitted to measured
 //! impacts in space (see [`crate::fit::spatial`]).
 
-use axum::Json;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::{EstimateDto, MeasuredDto};
 use crate::fit::{self, FitError, Measured, SpatialChange, SpatialLaw, SpatialObservation};
-use crate::http::accept::{AcceptsJson, NotAcceptable};
 use crate::http::dto::{RegimeDto, TorsionalRegimeDto};
-use crate::http::extract::ApiJson;
 use crate::http::impacts::spatial::{SpatialBodyDto, SpatialContactDto};
-use crate::http::problem::{ApiError, Problems};
+use crate::http::problem::ApiError;
 use crate::impact::Law;
 
 /// The law whose coefficients are fitted.
@@ -220,19 +217,14 @@ fn members(law: &Law, torsion: Option<crate::impact::Twist>) -> serde_json::Valu
     m
 }
 
-/// Fit the coefficients of a spatial law (e with f, μ or f and e_t; the
-/// two-phase law; optionally the twist law) to measured impacts in space.
-#[utoipa::path(
-    post,
-    path = "/v1/fits/spatial",
-    tag = "fits",
-    request_body(content = SpatialFitRequest, content_type = "application/json"),
-    responses((status = 200, description = "The fitted law", body = SpatialFitResponse), Problems, NotAcceptable)
-)]
-pub async fn fits_spatial(
-    _: AcceptsJson,
-    ApiJson(req): ApiJson<SpatialFitRequest>,
-) -> Result<Json<SpatialFitResponse>, ApiError> {
+json_operation! {
+    /// Fit the coefficients of a spatial law (e with f, μ or f and e_t; the
+    /// two-phase law; optionally the twist law) to measured impacts in space.
+    fits_spatial: "/v1/fits/spatial" in "fits", SpatialFitRequest => SpatialFitResponse ("The fitted law") by respond_spatial_fit
+}
+
+/// The fit of a spatial fit request.
+pub fn respond_spatial_fit(req: SpatialFitRequest) -> Result<SpatialFitResponse, ApiError> {
     if req.impacts.is_empty() {
         return Err(problem("/impacts", "give at least one measured impact"));
     }
@@ -298,7 +290,7 @@ pub async fn fits_spatial(
         };
         problem(pointer, e.to_string())
     })?;
-    Ok(Json(SpatialFitResponse {
+    Ok(SpatialFitResponse {
         law: req.law,
         members: members(&fit.law, fit.torsion),
         coefficients: fit
@@ -321,5 +313,5 @@ pub async fn fits_spatial(
             .collect(),
         chi_squared: fit.chi_squared,
         degrees_of_freedom: fit.degrees_of_freedom,
-    }))
+    })
 }

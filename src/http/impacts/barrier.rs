@@ -7,11 +7,11 @@ use serde::Deserialize;
 use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of, law_problem};
+use super::respond;
 use crate::error::{ImpactError, Input};
 use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
 use crate::http::problem::ApiError;
-use crate::impact::{Law, PlanarBody, PlanarImpact, Precision, solve};
-use crate::outcome::Outputs;
+use crate::impact::{Law, PlanarBody, PlanarImpact};
 use crate::scene::PlanarVelocity;
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.
@@ -183,40 +183,46 @@ fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: La
     )
 }
 
-fn respond_planar(impact: PlanarImpact, precision: PrecisionDto) -> Result<PlanarResponse, ApiError> {
-    let precision = Precision::from(precision);
-    let outcome = solve(&impact, Outputs::ALL, precision)?;
-    Ok(PlanarResponse::from_outcome(&outcome, precision))
-}
-
 /// The response to a normal request.
 pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
-    respond_planar(PlanarImpact::try_from(&req)?, req.precision)
+    respond(
+        PlanarImpact::try_from(&req),
+        req.precision,
+        PlanarResponse::from_outcome,
+    )
 }
 
 /// The response to an oblique request.
 pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> {
-    respond_planar(PlanarImpact::try_from(&req)?, req.precision)
+    respond(
+        PlanarImpact::try_from(&req),
+        req.precision,
+        PlanarResponse::from_outcome,
+    )
 }
 
 /// The response to a tangential-restitution request.
 pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
-    respond_planar(PlanarImpact::from(&req), req.precision)
+    respond(
+        Ok(PlanarImpact::from(&req)),
+        req.precision,
+        PlanarResponse::from_outcome,
+    )
 }
 
-impact_operation! {
+json_operation! {
     /// Normal impact of a point mass or a frictionless rigid body (section 2.1).
-    impacts_normal: "/v1/impacts/normal", NormalRequest => PlanarResponse ("The impact's outcome") by respond_normal
+    impacts_normal: "/v1/impacts/normal" in "impacts", NormalRequest => PlanarResponse ("The impact's outcome") by respond_normal
 }
 
-impact_operation! {
+json_operation! {
     /// Oblique impact with a prescribed impulse ratio, Coulomb friction, or two-phase kinetic restitution (Eqs 1–19, Appendix).
-    impacts_oblique: "/v1/impacts/oblique", ObliqueRequest => PlanarResponse ("The impact's outcome") by respond_oblique
+    impacts_oblique: "/v1/impacts/oblique" in "impacts", ObliqueRequest => PlanarResponse ("The impact's outcome") by respond_oblique
 }
 
-impact_operation! {
+json_operation! {
     /// Impact with tangential restitution: the bilinear model of Eqs 20–27.
-    impacts_tangential: "/v1/impacts/tangential", TangentialRequest => PlanarResponse ("The impact's outcome") by respond_tangential
+    impacts_tangential: "/v1/impacts/tangential" in "impacts", TangentialRequest => PlanarResponse ("The impact's outcome") by respond_tangential
 }
 
 #[cfg(test)]

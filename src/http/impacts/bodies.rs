@@ -6,10 +6,11 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::law::{KineticRestitutionDto, law_of};
+use super::respond;
 use crate::http::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
 use crate::http::problem::ApiError;
-use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision, solve};
-use crate::outcome::{BodiesOutcome, BodyOutcome, Outputs};
+use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision};
+use crate::outcome::{BodiesOutcome, BodyOutcome};
 
 /// A vector in world axes.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
@@ -280,15 +281,16 @@ impl PlanarContactResponse {
 
 /// The response to a planar contact request.
 pub fn respond_planar_contact(req: PlanarContactRequest) -> Result<PlanarContactResponse, ApiError> {
-    let precision = Precision::from(req.precision);
-    let impact = BodiesImpact::try_from(&req)?;
-    let outcome = solve(&impact, Outputs::ALL, precision)?;
-    Ok(PlanarContactResponse::from_outcome(&outcome, precision))
+    respond(
+        BodiesImpact::try_from(&req),
+        req.precision,
+        PlanarContactResponse::from_outcome,
+    )
 }
 
-impact_operation! {
+json_operation! {
     /// Two laminae, or one against a barrier, in world axes: every law of the one-body endpoints.
-    impacts_planar: "/v1/impacts/planar", PlanarContactRequest => PlanarContactResponse ("The contact's outcome") by respond_planar_contact
+    impacts_planar: "/v1/impacts/planar" in "impacts", PlanarContactRequest => PlanarContactResponse ("The contact's outcome") by respond_planar_contact
 }
 
 #[cfg(test)]

@@ -4,32 +4,6 @@
 //! barrier in the plane, world axes: `/v1/impacts/planar`) and `spatial` —
 //! and `law`, the wire form of a contact law that all of them read.
 
-/// An impact operation: `POST $path` with a JSON `$request`, answered by
-/// `$respond` as a JSON `$response` described as `$answer`, with its OpenAPI
-/// operation (the doc comment is its summary and description).
-macro_rules! impact_operation {
-    ($(#[$doc:meta])* $name:ident: $path:tt, $request:ident => $response:ident ($answer:tt) by $respond:ident) => {
-        $(#[$doc])*
-        #[utoipa::path(
-            post,
-            path = $path,
-            tag = "impacts",
-            request_body(content = $request, content_type = "application/json"),
-            responses(
-                (status = 200, description = $answer, body = $response),
-                crate::http::problem::Problems,
-                crate::http::accept::NotAcceptable
-            )
-        )]
-        pub async fn $name(
-            _: crate::http::accept::AcceptsJson,
-            crate::http::extract::ApiJson(req): crate::http::extract::ApiJson<$request>,
-        ) -> Result<axum::Json<$response>, crate::http::problem::ApiError> {
-            Ok(axum::Json($respond(req)?))
-        }
-    };
-}
-
 pub mod barrier;
 pub mod bodies;
 pub mod inertia;
@@ -37,6 +11,10 @@ pub mod law;
 pub mod spatial;
 pub mod torsional;
 
+use crate::http::dto::PrecisionDto;
+use crate::http::problem::ApiError;
+use crate::impact::{Case, Precision, solve};
+use crate::outcome::Outputs;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
@@ -47,6 +25,19 @@ pub use self::bodies::PlanarContactRequest;
 pub use self::law::KineticRestitutionDto;
 pub use self::spatial::SpatialContactRequest;
 pub use self::torsional::{TorsionalBodyDto, TorsionalRequest, respond_torsional};
+
+/// The answer to an impact request: `impact` (the request's scene, or the
+/// refusal of it) solved with every output in `precision`, written as the
+/// response by `response`.
+pub(crate) fn respond<C: Case, R>(
+    impact: Result<C, ApiError>,
+    precision: PrecisionDto,
+    response: impl FnOnce(&C::Outcome, Precision) -> R,
+) -> Result<R, ApiError> {
+    let precision = Precision::from(precision);
+    let outcome = solve(&impact?, Outputs::ALL, precision)?;
+    Ok(response(&outcome, precision))
+}
 
 /// The impact endpoints, with their OpenAPI operations.
 pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {

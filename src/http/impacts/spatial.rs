@@ -7,10 +7,11 @@ use utoipa::ToSchema;
 use super::bodies::body_count;
 pub use super::inertia::{InertiaDto, PrincipalDto, QuaternionDto, SphereDto, TensorDto};
 use super::law::{KineticRestitutionDto, law_of};
+use super::respond;
 use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
 use crate::http::problem::ApiError;
-use crate::impact::{Precision, RigidBody, SpatialContact, SpatialImpact, Twist, solve};
-use crate::outcome::{Outputs, SpatialBodyOutcome, SpatialContactVelocity, SpatialOutcome};
+use crate::impact::{Precision, RigidBody, SpatialContact, SpatialImpact, Twist};
+use crate::outcome::{SpatialBodyOutcome, SpatialContactVelocity, SpatialOutcome};
 
 /// A vector in world axes.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, ToSchema)]
@@ -313,16 +314,17 @@ impl SpatialContactResponse {
 
 /// The response to a spatial contact request.
 pub fn respond_spatial_contact(req: SpatialContactRequest) -> Result<SpatialContactResponse, ApiError> {
-    let precision = Precision::from(req.precision);
-    let impact = SpatialImpact::try_from(&req)?;
-    let outcome = solve(&impact, Outputs::ALL, precision)?;
-    Ok(SpatialContactResponse::from_outcome(&outcome, precision))
+    respond(
+        SpatialImpact::try_from(&req),
+        req.precision,
+        SpatialContactResponse::from_outcome,
+    )
 }
 
-impact_operation! {
+json_operation! {
     /// Two rigid bodies, or one against a barrier, in space: inertia tensors, slip
     /// in any direction, the twist law about the normal.
-    impacts_spatial: "/v1/impacts/spatial", SpatialContactRequest => SpatialContactResponse ("The contact's outcome") by respond_spatial_contact
+    impacts_spatial: "/v1/impacts/spatial" in "impacts", SpatialContactRequest => SpatialContactResponse ("The contact's outcome") by respond_spatial_contact
 }
 
 #[cfg(test)]

@@ -4,10 +4,10 @@
 use serde::Deserialize;
 use utoipa::ToSchema;
 
+use super::respond;
 use crate::http::dto::{PrecisionDto, TorsionalResponse};
 use crate::http::problem::ApiError;
-use crate::impact::{Precision, TorsionalImpact, solve};
-use crate::outcome::Outputs;
+use crate::impact::TorsionalImpact;
 
 /// Mass and moment of inertia about the contact normal.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
@@ -90,14 +90,16 @@ impl From<&TorsionalRequest> for TorsionalImpact {
 
 /// The response to a torsional request.
 pub fn respond_torsional(req: TorsionalRequest) -> Result<TorsionalResponse, ApiError> {
-    let precision = Precision::from(req.precision);
-    let outcome = solve(&TorsionalImpact::from(&req), Outputs::ALL, precision)?;
-    Ok(TorsionalResponse::from_outcome(&outcome, precision))
+    respond(
+        Ok(TorsionalImpact::from(&req)),
+        req.precision,
+        TorsionalResponse::from_outcome,
+    )
 }
 
-impact_operation! {
+json_operation! {
     /// Impact with torsional restitution: the bilinear model of Eqs 28–31.
-    impacts_torsional: "/v1/impacts/torsional", TorsionalRequest => TorsionalResponse ("The impact's outcome") by respond_torsional
+    impacts_torsional: "/v1/impacts/torsional" in "impacts", TorsionalRequest => TorsionalResponse ("The impact's outcome") by respond_torsional
 }
 
 #[cfg(test)]
@@ -106,7 +108,8 @@ mod tests {
 
     use super::super::wire_check::{inputs_resolve, outputs_resolve};
     use super::*;
-    use crate::impact::Case;
+    use crate::impact::{Case, Precision, solve};
+    use crate::outcome::Outputs;
 
     #[test]
     fn every_input_and_output_path_resolves_in_the_torsional_wire_types() {
