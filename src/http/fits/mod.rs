@@ -22,7 +22,7 @@ use utoipa_axum::routes;
 use super::dto::{ContactDto, RegimeDto, RigidBodyDto, TorsionalRegimeDto, VelocityDto};
 use super::extract::ApiJson;
 use super::impacts::TorsionalBodyDto;
-use super::problem::{ApiError, Problem, Problems};
+use super::problem::{ApiError, Problems};
 use crate::fit::{self, Estimate, FitError, Measured, Observation, TorsionalObservation};
 use crate::scene::Body;
 
@@ -119,8 +119,7 @@ pub struct TangentialFitResponse {
             (TangentialFitResponse = "application/json"),
             (String = "image/svg+xml"),
         )),
-        (status = 406, description = "Neither application/json nor image/svg+xml is acceptable",
-         body = Problem, content_type = "application/problem+json"),
+        plot::FitNotAcceptable,
         Problems
     )
 )]
@@ -265,8 +264,7 @@ fn unfittable(error: FitError) -> ApiError {
             (TorsionalFitResponse = "application/json"),
             (String = "image/svg+xml"),
         )),
-        (status = 406, description = "Neither application/json nor image/svg+xml is acceptable",
-         body = Problem, content_type = "application/problem+json"),
+        plot::FitNotAcceptable,
         Problems
     )
 )]

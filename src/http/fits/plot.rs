@@ -9,7 +9,9 @@ use axum::http::{HeaderMap, StatusCode};
 
 use crate::fit::{Observation, TangentialFit, TorsionalFit, TorsionalObservation};
 use crate::http::accept::choose;
-use crate::http::problem::ApiError;
+use utoipa::IntoResponses;
+
+use crate::http::problem::{ApiError, Problem};
 use crate::impact::{Law, PlanarImpact, Precision, TorsionalImpact, solve};
 use crate::outcome::Outputs;
 use crate::plot::{Curve, Figure, LegendEntry, Line, Marker, Markers, PALETTE, Shape};
@@ -44,6 +46,20 @@ pub fn negotiate(headers: &HeaderMap) -> Result<FitFormat, ApiError> {
             "this fit is available as application/json or image/svg+xml",
         )
     })
+}
+
+/// The response of a fit to an `Accept` that admits neither of its formats
+/// (for the document).
+#[derive(IntoResponses)]
+#[allow(dead_code)]
+pub enum FitNotAcceptable {
+    /// `Accept` admits neither JSON nor SVG.
+    #[response(
+        status = 406,
+        description = "Neither application/json nor image/svg+xml is acceptable",
+        content_type = "application/problem+json"
+    )]
+    Problem(Problem),
 }
 
 /// V_ct/|v_cn| after against v_ct/|v_cn| before.
