@@ -133,18 +133,6 @@ impl Law {
         })
     }
 
-    /// [`Law::validate`] for the plane, which has no Coulomb approach phase.
-    pub(crate) fn validate_planar(&self) -> Result<Law> {
-        match self.validate()? {
-            Law::KineticFriction { .. } => Err(ImpactError::Unavailable {
-                input: Input::ApproachFriction,
-                reason: "Coulomb friction within the approach phase is a law of the contact in space; \
-                         in the plane give approach_impulse_ratio",
-            }),
-            law => Ok(law),
-        }
-    }
-
     /// The slot of a coefficient this law reads.
     #[inline]
     pub(crate) fn input_mut(&mut self, input: Input) -> Option<&mut f64> {

@@ -74,7 +74,7 @@ impl BodiesImpact {
         if self.contact.normal[0] == 0.0 && self.contact.normal[1] == 0.0 {
             return Err(ImpactError::ZeroVector { input: Input::Normal });
         }
-        let law = self.law.validate_planar()?;
+        let law = self.law.validate()?;
         let (approaching, certain) = approaches(
             approach::<f64>(self),
             || self.approach_error_bound(),
@@ -151,6 +151,7 @@ impl Case for BodiesImpact {
         | TangentialRestitution
         | KineticRestitution
         | ApproachImpulseRatio
+        | ApproachFriction
         | ReboundImpulseRatio => impact.law.input_mut(input),
     });
 

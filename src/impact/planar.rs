@@ -169,6 +169,7 @@ impl Case for PlanarImpact {
         | TangentialRestitution
         | KineticRestitution
         | ApproachImpulseRatio
+        | ApproachFriction
         | ReboundImpulseRatio => match impact.body {
             PlanarBody::PointMass { .. } if input != Input::Restitution => None,
             _ => impact.law.input_mut(input),
@@ -233,7 +234,7 @@ impl Case for PlanarImpact {
         );
         Fixed {
             scene: (rigid && !scene_swept).then(|| self.scene()),
-            law: (rigid && !law_swept).then(|| self.law.validate_planar()),
+            law: (rigid && !law_swept).then(|| self.law.validate()),
         }
     }
 
@@ -275,7 +276,7 @@ impl Case for PlanarImpact {
                 };
                 let law = match &fixed.law {
                     Some(law) => law.clone(),
-                    None => self.law.validate_planar(),
+                    None => self.law.validate(),
                 };
                 match law {
                     Ok(law) => evaluate(

@@ -17,7 +17,7 @@ use std::cmp::Ordering;
 use super::{Exact, abs, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::law::{Approach, Law, Reading};
+use crate::law::{Approach, Law, Phases, Reading};
 use crate::outcome::{Outputs, Regime};
 
 /// A scene's contact space in the field `N`: the approach and the slip, and
@@ -127,16 +127,8 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
     let law = Reading::of(law, false);
-    if let Some(phases) = law.phases {
-        return match phases.approach {
-            Approach::Ratio(mu_a) => kinetic(sc, phases.r, mu_a, phases.rebound, outputs, out),
-            // Refused by the planar validation (`Law::validate_planar`).
-            Approach::Friction(_) => Err(ImpactError::Unavailable {
-                input: Input::ApproachFriction,
-                reason: "Coulomb friction within the approach phase is a law of the contact in space",
-            }
-            .into()),
-        };
+    if let Some(phases) = &law.phases {
+        return kinetic(sc, phases, outputs, out);
     }
     let e = N::of(law.e);
     match law.kept {
@@ -337,30 +329,46 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     )
 }
 
-/// The Appendix's two phases: approach to `ū_n = 0` with `μ_A`, rebound
-/// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) / D(μ_A)` (Eq 11, A-16). The
+/// The Appendix's two phases: approach to `ū_n = 0`, rebound
+/// `P_n^R = R P_n^A` with `μ_R`; `e = R D(μ_R) P_n^A / s` (Eq 11, A-16; with
+/// a ratio approach `e = R D(μ_R) / D(μ_A)`). The approach takes the
+/// prescribed ratio `μ_A`, or Coulomb friction `f_A` (conventions, rule 7):
+/// the impulse that ends the approach with `U = 0` when its `|μ| ≤ f_A`,
+/// else `|μ| = f_A` opposing the slip; the rebound's ratio `μ_R` is then a
+/// magnitude along the approach's tangential impulse, as in space. The
 /// reported ratio is the overall `μ = P_t / P_n`.
 #[inline(always)]
 fn kinetic<N: Field, S: ContactSpace<N>>(
     sc: &S,
-    r: f64,
-    mu_a: f64,
-    mu_r: f64,
+    phases: &Phases,
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
     let cs = sc.reduced();
-    let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachImpulseRatio)?;
+    let r = phases.r;
+    let (approach, normal, mu_r, regime) = match phases.approach {
+        Approach::Ratio(mu_a) => {
+            let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachImpulseRatio)?;
+            let approach = ratio_parts(sc, &cs.s, mu_a, &lever_a, &d_a);
+            (
+                approach,
+                ApproachNormal::Ratio(d_a),
+                phases.rebound,
+                Regime::Prescribed,
+            )
+        }
+        Approach::Friction(f_a) => coulomb_approach(sc, f_a, r > 0.0, phases.rebound)?,
+    };
     let rebound = if r > 0.0 {
         Some(positive_coefficient(sc, mu_r, Input::ReboundImpulseRatio)?)
     } else {
         None
     };
-    let e = match &rebound {
-        Some((_, d_r)) => N::of(r).mul(&d_r.div(&d_a)),
-        None => N::of(0.0),
+    let e = match (&rebound, &normal) {
+        (Some((_, d_r)), ApproachNormal::Ratio(d_a)) => N::of(r).mul(&d_r.div(d_a)),
+        (Some((_, d_r)), ApproachNormal::Stick(q_na)) => N::of(r).mul(&d_r.mul(q_na).div(&cs.s)),
+        (None, _) => N::of(0.0),
     };
-    let approach = ratio_parts(sc, &cs.s, mu_a, &lever_a, &d_a);
     let (dn, dt, turn, dut) = match &rebound {
         Some((lever_r, d_r)) => {
             let rebound = ratio_parts(sc, &e.mul(&cs.s), mu_r, lever_r, d_r);
@@ -388,13 +396,77 @@ fn kinetic<N: Field, S: ContactSpace<N>>(
         sc,
         &e,
         Some(r),
-        Regime::Prescribed,
+        regime,
         &answer,
         None,
         outputs,
         Input::KineticRestitution,
         out,
     )
+}
+
+/// The approach's normal impulse, as `e` reads it: `1/D(μ_A)` per unit of
+/// `s` for a ratio approach, the sticking impulse's `q_n` otherwise.
+enum ApproachNormal<N> {
+    Ratio(N),
+    Stick(N),
+}
+
+/// An approach under Coulomb friction `f_A`: its parts, its normal impulse,
+/// the rebound's signed ratio (`μ_R` along the approach's tangential
+/// impulse) and the regime (sticking or sliding).
+#[allow(clippy::type_complexity)] // the parts of one phase, named where they are read
+#[inline(always)]
+fn coulomb_approach<N: Field, S: ContactSpace<N>>(
+    sc: &S,
+    f_a: f64,
+    rebound: bool,
+    mu_r: f64,
+) -> Exact<N, ((N, N, S::Turn, N), ApproachNormal<N>, f64, Regime)> {
+    let cs = sc.reduced();
+    // The impulse that ends the approach with U = 0 (q_n = s, q_t = u_t).
+    let (sdn, sdt) = scaled_impulses(sc, &cs.s, &cs.ut);
+    let sticks = sign(&sdn)? != Ordering::Equal
+        && sign(&N::of(f_a).mul(&abs(&sdn)?).sub(&abs(&sdt)?))? != Ordering::Less;
+    // The tangential impulse's sign along t̂: the sticking impulse's when the
+    // approach sticks or nothing slips, else against the slip.
+    let slip = sign(&cs.ut)?;
+    let along = match (sticks, slip) {
+        (false, Ordering::Greater) => Some(-1.0),
+        (false, Ordering::Less) => Some(1.0),
+        _ => match sign(&sdt)? {
+            Ordering::Greater => Some(1.0),
+            Ordering::Less => Some(-1.0),
+            Ordering::Equal => None,
+        },
+    };
+    if along.is_none() && rebound && mu_r > 0.0 {
+        return Err(ImpactError::NoSlipDirection {
+            input: Input::ReboundImpulseRatio,
+        }
+        .into());
+    }
+    let mu_r = along.map_or(0.0, |a| a * mu_r + 0.0);
+    if sticks {
+        if sign(&sdn)? != Ordering::Greater {
+            return Err(ImpactError::NoImpulse {
+                input: Input::ApproachFriction,
+            }
+            .into());
+        }
+        let inv = &sc.inv_det();
+        let parts = (
+            sc.target_normal(&cs.s, &sdn, inv),
+            sdt.mul(inv),
+            sc.target_turn(&cs.s, &cs.ut, inv),
+            cs.ut.neg(),
+        );
+        return Ok((parts, ApproachNormal::Stick(sdn.mul(inv)), mu_r, Regime::Sticking));
+    }
+    let mu_a = along.map_or(0.0, |a| a * f_a + 0.0);
+    let (lever_a, d_a) = positive_coefficient(sc, mu_a, Input::ApproachFriction)?;
+    let parts = ratio_parts(sc, &cs.s, mu_a, &lever_a, &d_a);
+    Ok((parts, ApproachNormal::Ratio(d_a), mu_r, Regime::Sliding))
 }
 
 /// Checks one answer and hands it to the scene: the ratio must exist, the

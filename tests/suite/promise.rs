@@ -114,6 +114,26 @@ fn random_law(rng: &mut Rng) -> Law {
     }
 }
 
+/// A two-phase law: a prescribed approach ratio (signed in the plane) or
+/// Coulomb friction within the approach.
+fn two_phase_law(rng: &mut Rng) -> Law {
+    let value = restitution(rng);
+    let rebound = if rng.chance(0.3) { 0.0 } else { rng.range(0.0, 1.0) };
+    if rng.chance(0.5) {
+        Law::KineticRestitution {
+            value,
+            approach_impulse_ratio: rng.range(-1.0, 1.0),
+            rebound_impulse_ratio: rebound * rng.pick(&[-1.0, 1.0]),
+        }
+    } else {
+        Law::KineticFriction {
+            value,
+            approach_friction: if rng.chance(0.2) { 0.0 } else { rng.range(0.0, 1.5) },
+            rebound_impulse_ratio: rebound,
+        }
+    }
+}
+
 /// One lamina on a barrier, slender (`k/d` down to 10⁻⁷) or with a
 /// prescribed ratio just inside `D(μ) = k² + d_c (d_c − μ d_d) > 0`.
 fn lamina_on_barrier(rng: &mut Rng) -> PlanarImpact {
@@ -339,6 +359,22 @@ fn fast_keeps_its_promise_on_slender_bodies_in_space() {
     // cancellation), a decision on that slip is already too close for its
     // bound and escalates the impact: the survey checks the promise only.
     survey("space", 0x5e3, COUNT, slender_in_space);
+}
+
+#[test]
+fn fast_keeps_its_promise_on_two_phase_laws_in_the_plane() {
+    // The two-phase laws on the same adversarial scenes, one lamina and two
+    // (the Coulomb approach sticking or sliding): the promise only.
+    let lamina = |rng: &mut Rng| PlanarImpact {
+        law: two_phase_law(rng),
+        ..lamina_on_barrier(rng)
+    };
+    survey("two phases, one lamina", 0x5e5, COUNT / 2, lamina);
+    let pair = |rng: &mut Rng| BodiesImpact {
+        law: two_phase_law(rng),
+        ..slender_pair(rng)
+    };
+    survey("two phases, two bodies", 0x5e6, COUNT / 2, pair);
 }
 
 #[test]

@@ -13,7 +13,7 @@ use crate::impact::Law;
 
 /// The Appendix's two-phase model: kinetic restitution R with phase impulse
 /// ratios (in space magnitudes, ≥ 0, along one direction opposing the slip),
-/// or, in space, Coulomb friction in the approach phase instead of its ratio.
+/// or Coulomb friction in the approach phase instead of its ratio.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct KineticRestitutionDto {
@@ -24,12 +24,14 @@ pub struct KineticRestitutionDto {
     /// give it or `approach_friction`.
     #[schema(example = -0.123)]
     pub approach_impulse_ratio: Option<f64>,
-    /// f_A ≥ 0 (in space only): Coulomb friction within the approach phase,
-    /// which sticks when the impulse ending it with no relative contact
-    /// velocity has |P_t| ≤ f_A P_n, and otherwise slides against the slip.
+    /// f_A ≥ 0: Coulomb friction within the approach phase, which sticks
+    /// when the impulse ending it with no relative contact velocity has
+    /// |P_t| ≤ f_A P_n, and otherwise slides against the slip; μ_R is then a
+    /// magnitude along the approach's tangential impulse.
     #[schema(minimum = 0.0, example = 0.3)]
     pub approach_friction: Option<f64>,
-    /// μ_R = P_t^R / P_n^R: impulse ratio of the rebound phase (Eq 13).
+    /// μ_R = P_t^R / P_n^R: impulse ratio of the rebound phase (Eq 13); ≥ 0
+    /// with `approach_friction`.
     #[schema(example = -0.123)]
     pub rebound_impulse_ratio: f64,
 }
@@ -111,7 +113,7 @@ pub(super) fn law_of(
             )),
             (None, None) => Err(law_problem(
                 "/kinetic_restitution/approach_impulse_ratio",
-                "the approach phase needs approach_impulse_ratio (or, in space, approach_friction)",
+                "the approach phase needs approach_impulse_ratio or approach_friction",
             )),
         };
     }

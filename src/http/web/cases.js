@@ -63,9 +63,15 @@ const lamina = (i) => [
   field(`/bodies/${i}/angular_velocity`, 'ω', 'rad/s', 'angular velocity, counter-clockwise positive'),
 ];
 
+const coulombApproach = () => field('/kinetic_restitution/approach_friction', 'f<sub>A</sub>', '', 'Coulomb friction of the approach phase', NON_NEGATIVE);
+
+// Which two-phase law a request holds.
+const twoPhase = (r) => ('approach_friction' in r.kinetic_restitution ? 'kinetic-coulomb' : 'kinetic');
+
 const XYZ = ['x', 'y', 'z'];
-// The two-phase law in space: R, the approach phase's member, μ_R (magnitudes).
-const kineticInSpace = (approach) => [
+// The two-phase law with ratios as magnitudes (space, and a Coulomb approach
+// in the plane): R, the approach phase's member, μ_R along the approach.
+const kineticMagnitudes = (approach) => [
   field('/kinetic_restitution/value', 'R', '', 'kinetic coefficient of restitution P<sub>n</sub><sup>R</sup>/P<sub>n</sub><sup>A</sup> (Eq 9)', UNIT_INTERVAL),
   approach,
   // No lower bound on the page: the member's schema is the plane's too, where
@@ -127,7 +133,8 @@ export const CASES = [
         { id: 'friction', label: 'friction f', parts: [restitution(), friction('Coulomb friction coefficient; the ratio is capped by μ<sub>c</sub>')] },
         { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed impulse ratio P<sub>t</sub>/P<sub>n</sub> (Eq 2)')] },
         { id: 'kinetic', label: 'kinetic R', parts: kinetic() },
-      ], (r) => ('kinetic_restitution' in r ? 'kinetic' : 'impulse_ratio' in r ? 'ratio' : 'friction')),
+        { id: 'kinetic-coulomb', label: 'kinetic R, Coulomb approach', parts: kineticMagnitudes(coulombApproach()) },
+      ], (r) => ('kinetic_restitution' in r ? twoPhase(r) : 'impulse_ratio' in r ? 'ratio' : 'friction')),
     ],
   },
   {
@@ -169,7 +176,8 @@ export const CASES = [
         { id: 'tangential', label: 'tangential e<sub>t</sub>', parts: [restitution(), friction(), tangentialRestitution()] },
         { id: 'frictionless', label: 'frictionless', parts: [restitution()] },
         { id: 'kinetic', label: 'kinetic R', parts: kinetic() },
-      ], (r) => ('kinetic_restitution' in r ? 'kinetic' : 'tangential_restitution' in r ? 'tangential'
+        { id: 'kinetic-coulomb', label: 'kinetic R, Coulomb approach', parts: kineticMagnitudes(coulombApproach()) },
+      ], (r) => ('kinetic_restitution' in r ? twoPhase(r) : 'tangential_restitution' in r ? 'tangential'
         : 'impulse_ratio' in r ? 'ratio' : 'friction' in r ? 'friction' : 'frictionless')),
     ],
   },
@@ -183,9 +191,9 @@ export const CASES = [
         { id: 'ratio', label: 'impulse ratio μ', parts: [restitution(), field('/impulse_ratio', 'μ', '', 'prescribed ratio |P<sub>t</sub>|/P<sub>n</sub>, opposing the slip', NON_NEGATIVE)] },
         { id: 'tangential', label: 'tangential e<sub>t</sub>', parts: [restitution(), friction(), tangentialRestitution()] },
         { id: 'frictionless', label: 'frictionless', parts: [restitution()] },
-        { id: 'kinetic', label: 'kinetic R', parts: kineticInSpace(field('/kinetic_restitution/approach_impulse_ratio', 'μ<sub>A</sub>', '', 'approach phase |P<sub>t</sub>|/P<sub>n</sub> (≥ 0), opposing the slip')) },
-        { id: 'kinetic-coulomb', label: 'kinetic R, Coulomb approach', parts: kineticInSpace(field('/kinetic_restitution/approach_friction', 'f<sub>A</sub>', '', 'Coulomb friction of the approach phase', NON_NEGATIVE)) },
-      ], (r) => ('kinetic_restitution' in r ? ('approach_friction' in r.kinetic_restitution ? 'kinetic-coulomb' : 'kinetic')
+        { id: 'kinetic', label: 'kinetic R', parts: kineticMagnitudes(field('/kinetic_restitution/approach_impulse_ratio', 'μ<sub>A</sub>', '', 'approach phase |P<sub>t</sub>|/P<sub>n</sub> (≥ 0), opposing the slip')) },
+        { id: 'kinetic-coulomb', label: 'kinetic R, Coulomb approach', parts: kineticMagnitudes(coulombApproach()) },
+      ], (r) => ('kinetic_restitution' in r ? twoPhase(r)
         : 'tangential_restitution' in r ? 'tangential' : 'impulse_ratio' in r ? 'ratio'
         : 'friction' in r ? 'friction' : 'frictionless')),
       toggle('twist', 'Twist law about the normal', [group('Twist', [
