@@ -76,7 +76,7 @@ pub use accuracy::{ErrorScales, PROMISED_RELATIVE_ERROR};
 pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
 pub use impact::{
     BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, RigidBody,
-    SpatialContact, SpatialImpact, TorsionalImpact, Twist, solve,
+    SpatialContact, SpatialImpact, TorsionalImpact, Twist, solve, solve_many,
 };
 pub use outcome::{
     Answers, BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, SpatialBodyOutcome, SpatialOutcome,

@@ -1,7 +1,10 @@
 //! The driver of `benches/scripts/solve-cost`: single solves of the precision
 //! bench's scenes, each timed as the best of seven runs of `n` solves, in
 //! `fast`, `exact` and plain f64 without bounds (`unfiltered`, the peer).
-//! Prints one line per arithmetic: ns per solve for each scene.
+//! Prints one line per arithmetic: ns per solve for each scene. Built with
+//! `--features many` and run with `--batch` (benches/scripts/batch-cost), it
+//! times instead each scene solved `n` times by a caller's loop over `solve`
+//! and by one `solve_many` over a slice, in `fast` and `exact`.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -85,8 +88,46 @@ fn best_of_seven(n: u32, mut solve: impl FnMut()) -> f64 {
     best * 1e9
 }
 
+/// ns per impact of `n` copies of `impact` answered by a loop over `solve`
+/// and by `solve_many`, each collecting the answers into one vector.
+#[cfg(feature = "many")]
+fn loop_and_many<C: restitution::Case>(impact: &C, n: u32, precision: restitution::Precision) -> [f64; 2] {
+    use restitution::{solve, solve_many};
+    let impacts = vec![*impact; n as usize];
+    let looped = best_of_seven(1, || {
+        let answers: Vec<_> = black_box(&impacts).iter().map(|i| solve(i, Outputs::ALL, precision)).collect();
+        drop(black_box(answers));
+    });
+    let many = best_of_seven(1, || drop(black_box(solve_many(black_box(&impacts), Outputs::ALL, precision))));
+    [looped / f64::from(n), many / f64::from(n)]
+}
+
+#[cfg(feature = "many")]
+fn batch(n: u32) {
+    use restitution::Precision;
+    let (p, b2, s2, t) = (oblique(), laminae(true), space(true, false), tennis());
+    for (name, precision) in [("fast", Precision::Fast), ("exact", Precision::Exact)] {
+        let m = if precision == Precision::Exact { n / 10 } else { n };
+        let row = [
+            ("oblique", loop_and_many(&p, m, precision)),
+            ("two_laminae", loop_and_many(&b2, m, precision)),
+            ("space_two", loop_and_many(&s2, m / 4, precision)),
+            ("tennis", loop_and_many(&t, m / 4, precision)),
+        ];
+        print!("{name:>6}");
+        for (scene, [looped, many]) in row {
+            print!("  {scene} loop {looped:.0} many {many:.0}");
+        }
+        println!();
+    }
+}
+
 fn main() {
     let n: u32 = std::env::args().nth(1).map_or(100_000, |s| s.parse().expect("a count"));
+    #[cfg(feature = "many")]
+    if std::env::args().any(|a| a == "--batch") {
+        return batch(n);
+    }
     let (p, b1, b2) = (oblique(), laminae(false), laminae(true));
     let (s1, s2, s3, t) = (space(false, false), space(true, false), space(true, true), tennis());
     for (name, a) in [

@@ -48,6 +48,7 @@ macro_rules! reads {
 
 mod approach;
 mod bodies;
+mod entry;
 mod planar;
 mod spatial;
 mod torsional;
@@ -67,6 +68,8 @@ pub use crate::input::{
 use crate::model::{Exact, Fail};
 use crate::outcome::{Answers, Outputs};
 use crate::quantity::Value;
+
+pub use self::entry::{Solver, solve, solve_in, solve_many};
 
 /// Which arithmetic answers a request.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -224,87 +227,6 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
         in_range: bool,
         out: &mut Self::Outcome,
     ) -> (Result<()>, Stage);
-}
-
-/// Solves one impact in `precision`, computing the optional `outputs`.
-pub fn solve<C: Case>(impact: &C, outputs: Outputs, precision: Precision) -> Result<C::Outcome> {
-    solve_in(impact, outputs, precision.into()).0
-}
-
-/// Solves one impact in `arithmetic`, reporting which stage answered (a
-/// measurement hook, like [`Arithmetic`]).
-#[doc(hidden)]
-pub fn solve_in<C: Case>(
-    impact: &C,
-    outputs: Outputs,
-    arithmetic: Arithmetic,
-) -> (Result<C::Outcome>, Stage) {
-    crate::kernels::run(
-        #[inline(always)]
-        || {
-            let fixed = impact.fix(&[]);
-            let in_range = arithmetic.checks_range() && impact.all_in_fast_range();
-            let mut outcome = C::Outcome::default();
-            let (result, stage) = impact.evaluate(&fixed, outputs, arithmetic, in_range, &mut outcome);
-            (result.map(|()| outcome), stage)
-        },
-    )
-}
-
-/// One case prepared for many impacts that differ only in the `swept`
-/// inputs (a sweep): what the others fix is validated, and their fast range
-/// checked, once.
-#[derive(Debug, Clone)]
-pub struct Solver<C: Case> {
-    fixed: C::Fixed,
-    outputs: Outputs,
-    arithmetic: Arithmetic,
-    /// Whether every input not swept is in the fast range.
-    fixed_in_range: bool,
-    swept: Vec<Input>,
-}
-
-impl<C: Case> Solver<C> {
-    /// Prepares `base`, whose `swept` inputs will change, for `outputs` in `precision`.
-    pub fn new(base: &C, swept: &[Input], outputs: Outputs, precision: Precision) -> Self {
-        Solver::in_arithmetic(base, swept, outputs, precision.into())
-    }
-
-    /// The same in one `arithmetic` (for comparisons and benchmarks: what
-    /// the filter of `fast` costs a sweep is `Fast` against `Unfiltered`).
-    #[doc(hidden)]
-    pub fn in_arithmetic(base: &C, swept: &[Input], outputs: Outputs, arithmetic: Arithmetic) -> Self {
-        let fixed_inputs: Vec<Input> = base.reads().into_iter().filter(|i| !swept.contains(i)).collect();
-        Solver {
-            fixed: base.fix(swept),
-            outputs,
-            arithmetic,
-            fixed_in_range: all_in_fast_range(base, &fixed_inputs),
-            swept: swept.to_vec(),
-        }
-    }
-
-    /// The optional outputs computed.
-    pub fn outputs(&self) -> Outputs {
-        self.outputs
-    }
-
-    /// Solves `impact` (the base with other values of the swept inputs).
-    #[inline]
-    pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
-        let mut outcome = C::Outcome::default();
-        self.solve_into(impact, &mut outcome).map(|()| outcome)
-    }
-
-    /// Solves `impact` into `out` (left as it was on a refusal).
-    #[inline(always)]
-    pub fn solve_into(&self, impact: &C, out: &mut C::Outcome) -> Result<()> {
-        let in_range =
-            self.arithmetic.checks_range() && self.fixed_in_range && all_in_fast_range(impact, &self.swept);
-        impact
-            .evaluate(&self.fixed, self.outputs, self.arithmetic, in_range, out)
-            .0
-    }
 }
 
 /// The largest and smallest magnitudes (2^±200) the fast evaluation takes:

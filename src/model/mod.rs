@@ -1,8 +1,11 @@
-//! The impact model, written once over a [`Field`]: the planar laws
-//! (`planar.rs`: frictionless, prescribed ratio, Coulomb friction, tangential
-//! restitution, the two-phase kinetic model, the point mass) and the torsional
-//! law (`torsional.rs`), from the momentum equations (Eqs A-1…A-3) closed by
-//! Eq 1 and one tangential law.
+//! The impact model, written once over a [`Field`], from the momentum
+//! equations (Eqs A-1…A-3) closed by Eq 1 and one tangential law: the laws in
+//! the plane (`contact.rs`: frictionless, prescribed ratio, Coulomb friction,
+//! tangential restitution, the two phases), which one lamina against a
+//! barrier (`planar.rs`, the paper's frame, the point mass too) and laminae
+//! in world axes (`bodies.rs`) evaluate; the contact in space (`spatial/`),
+//! which reads every law as the same branches ([`crate::law::Reading`]); and
+//! the torsional law (`torsional.rs`).
 //!
 //! The same code answers both precisions: evaluated in `f64` it is the `fast`
 //! mode; evaluated in the exact arithmetics of [`crate::arith`] every output is

@@ -116,7 +116,7 @@ fn random_law(rng: &mut Rng) -> Law {
 
 /// A two-phase law: a prescribed approach ratio (signed in the plane) or
 /// Coulomb friction within the approach.
-fn two_phase_law(rng: &mut Rng) -> Law {
+pub(crate) fn two_phase_law(rng: &mut Rng) -> Law {
     let value = restitution(rng);
     let rebound = if rng.chance(0.3) { 0.0 } else { rng.range(0.0, 1.0) };
     if rng.chance(0.5) {
@@ -136,7 +136,7 @@ fn two_phase_law(rng: &mut Rng) -> Law {
 
 /// One lamina on a barrier, slender (`k/d` down to 10⁻⁷) or with a
 /// prescribed ratio just inside `D(μ) = k² + d_c (d_c − μ d_d) > 0`.
-fn lamina_on_barrier(rng: &mut Rng) -> PlanarImpact {
+pub(crate) fn lamina_on_barrier(rng: &mut Rng) -> PlanarImpact {
     let (mass, length, speed) = (rng.log_uniform(-3.0, 3.0), rng.log_uniform(-3.0, 3.0), far(rng));
     let dc = length * rng.range(0.2, 2.0) * rng.sign();
     let dd = length * rng.range(0.2, 2.0);
@@ -190,7 +190,7 @@ fn slender_lamina(rng: &mut Rng, contact: [f64; 2], length: f64, speed: f64) -> 
 }
 
 /// Two slender laminae (or one on a barrier) meeting head on.
-fn slender_pair(rng: &mut Rng) -> BodiesImpact {
+pub(crate) fn slender_pair(rng: &mut Rng) -> BodiesImpact {
     let (length, speed) = (rng.log_uniform(-3.0, 3.0), far(rng));
     let point = [0, 1].map(|_| length * rng.range(-1.0, 1.0));
     let a = slender_lamina(rng, point, length, speed);
@@ -239,7 +239,7 @@ fn slender_body(rng: &mut Rng, contact: [f64; 3], length: f64, speed: f64) -> Ri
     }
 }
 
-fn slender_in_space(rng: &mut Rng) -> SpatialImpact {
+pub(crate) fn slender_in_space(rng: &mut Rng) -> SpatialImpact {
     let (length, speed) = (rng.log_uniform(-3.0, 3.0), far(rng));
     let point = [0, 1, 2].map(|_| length * rng.range(-1.0, 1.0));
     let a = slender_body(rng, point, length, speed);
@@ -319,7 +319,7 @@ fn set_contact_velocity(impact: &mut SpatialImpact, target: [f64; 3]) {
 
 /// A torsional impact whose normal inertia is tiny or huge against `m ρ_p²`
 /// and whose coefficients sit at their edges.
-fn torsional_edges(rng: &mut Rng) -> TorsionalImpact {
+pub(crate) fn torsional_edges(rng: &mut Rng) -> TorsionalImpact {
     let (mass, radius, speed) = (rng.log_uniform(-3.0, 3.0), rng.log_uniform(-3.0, 3.0), far(rng));
     TorsionalImpact {
         mass,

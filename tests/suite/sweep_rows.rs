@@ -2,11 +2,16 @@
 //! random Coulomb scenes swept through both regimes, zero slip, central
 //! contacts, G on the normal, and values that are outside the fast range or
 //! invalid. (The adversarial sets at every switch are swept too, in
-//! `tests/decisions.rs`.)
+//! `tests/decisions.rs`.) So are the answers of `solve_many`, on the
+//! adversarial scenes of every case.
 
 use crate::common::Rng;
 use crate::common::sweep_rows::sweep_is_single_solves;
-use restitution::{Contact, Input, Law, PlanarImpact, PlanarVelocity};
+use crate::promise::{lamina_on_barrier, slender_in_space, slender_pair, torsional_edges, two_phase_law};
+use restitution::{
+    BodiesImpact, Case, Contact, Input, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve,
+    solve_many,
+};
 
 fn lamina(rng: &mut Rng, n: usize) -> PlanarImpact {
     let dyadic = n % 2 == 0;
@@ -87,4 +92,52 @@ fn coulomb_sweeps_are_single_solves_bit_for_bit() {
     }
     // The sweeps cross both regimes; most points are answered, the rest refused alike.
     assert!(answered * 2 > rows, "{answered} of {rows}");
+}
+
+/// `solve_many` over `impacts` answers each as `solve` does, bit for bit
+/// (`Debug` prints every f64 so that it reads back to its bits), in both
+/// precisions; returns how many it answered.
+fn many_are_single_solves<C: Case>(impacts: &[C]) -> usize {
+    let mut answered = 0;
+    for precision in [Precision::Fast, Precision::Exact] {
+        for outputs in [Outputs::ALL, Outputs::MINIMAL] {
+            let many = solve_many(impacts, outputs, precision);
+            assert_eq!(many.len(), impacts.len());
+            for (impact, batch) in impacts.iter().zip(&many) {
+                let single = solve(impact, outputs, precision);
+                assert_eq!(
+                    format!("{batch:?}"),
+                    format!("{single:?}"),
+                    "{impact:?} in {precision:?}"
+                );
+                answered += usize::from(batch.is_ok());
+            }
+        }
+    }
+    answered
+}
+
+#[test]
+fn solve_many_answers_each_impact_as_solve_does() {
+    let mut rng = Rng::new(0xba7c);
+    let draw = |rng: &mut Rng, make: &dyn Fn(&mut Rng) -> PlanarImpact| {
+        (0..300).map(|_| make(rng)).collect::<Vec<_>>()
+    };
+    let laminae = draw(&mut rng, &lamina_on_barrier);
+    let two_phase: Vec<PlanarImpact> = draw(&mut rng, &|rng| PlanarImpact {
+        law: two_phase_law(rng),
+        ..lamina_on_barrier(rng)
+    });
+    let pairs: Vec<BodiesImpact> = (0..300).map(|_| slender_pair(&mut rng)).collect();
+    let space: Vec<_> = (0..150).map(|_| slender_in_space(&mut rng)).collect();
+    let torsional: Vec<_> = (0..300).map(|_| torsional_edges(&mut rng)).collect();
+    let answered = [
+        many_are_single_solves(&laminae),
+        many_are_single_solves(&two_phase),
+        many_are_single_solves(&pairs),
+        many_are_single_solves(&space),
+        many_are_single_solves(&torsional),
+    ];
+    assert!(answered.iter().all(|&n| n > 100), "answered {answered:?}");
+    assert!(solve_many::<PlanarImpact>(&[], Outputs::ALL, Precision::Fast).is_empty());
 }
