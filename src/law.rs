@@ -1,6 +1,6 @@
 //! The contact laws: each law's variant with its coefficients, their checks,
 //! their slots (what a sweep's axis sets), and how the model reads a law as
-//! branches of its tangential impulse ([`Reading`], one reading for the plane
+//! branches of its tangential impulse (`Reading`, one reading for the plane
 //! and space). Adding a law whose branches `Reading` can state is its variant
 //! here (every match below fails to compile until it learns it) and its wire
 //! form (`src/http/impacts/law.rs`); a new kind of branch is also model code
