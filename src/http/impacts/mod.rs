@@ -39,6 +39,29 @@ pub(crate) fn respond<C: Case, R>(
     Ok(response(&outcome, precision))
 }
 
+/// The table of cases, one row per impact endpoint: the variant of the
+/// sweeps' `case`, its name on the wire (`/v1/impacts/<name>`), its request
+/// type, the solver's impact that answers it, and the conversion of a
+/// request to that impact. The table is handed, after the bracketed tokens
+/// given with it, to `consumer`, a macro that generates from it (the
+/// sweeps' `CaseDto`, `AnySweep`, `on_sweep!` and building, in
+/// `src/http/sweeps/cases.rs`); a new case is one row here, beside its route
+/// below.
+macro_rules! impact_cases {
+    ($($consumer:ident)::+ [$($extra:tt)*]) => {
+        $($consumer)::+! {
+            [$($extra)*]
+            Normal => ("normal", $crate::http::impacts::NormalRequest, $crate::impact::PlanarImpact, |base| $crate::impact::PlanarImpact::try_from(base)),
+            Oblique => ("oblique", $crate::http::impacts::ObliqueRequest, $crate::impact::PlanarImpact, |base| $crate::impact::PlanarImpact::try_from(base)),
+            Tangential => ("tangential", $crate::http::impacts::TangentialRequest, $crate::impact::PlanarImpact, |base| Ok($crate::impact::PlanarImpact::from(base))),
+            Torsional => ("torsional", $crate::http::impacts::TorsionalRequest, $crate::impact::TorsionalImpact, |base| Ok($crate::impact::TorsionalImpact::from(base))),
+            Planar => ("planar", $crate::http::impacts::PlanarContactRequest, $crate::impact::BodiesImpact, |base| $crate::impact::BodiesImpact::try_from(base)),
+            Spatial => ("spatial", $crate::http::impacts::SpatialContactRequest, $crate::impact::SpatialImpact, |base| $crate::impact::SpatialImpact::try_from(base)),
+        }
+    };
+}
+pub(crate) use impact_cases;
+
 /// The impact endpoints, with their OpenAPI operations.
 pub fn router<S: Clone + Send + Sync + 'static>() -> OpenApiRouter<S> {
     OpenApiRouter::new()

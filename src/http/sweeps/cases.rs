@@ -1,8 +1,10 @@
-//! The cases a sweep takes, declared once in one table: each case's name on
-//! the wire, its request type (the sweep's `base`), the solver's impact it
-//! converts to and the kind of sweep that runs it. `CaseDto`, its name and
-//! endpoint, its inputs and outputs (for `GET /v1/quantities`) and the
-//! building of a sweep of each case are all generated from the table.
+//! The cases a sweep takes, from the table of cases
+//! ([`impact_cases!`](crate::http::impacts::impact_cases), beside the impact
+//! endpoints): each case's name on the wire, its request type (the sweep's
+//! `base`), the solver's impact it converts to and the kind of sweep that
+//! runs it. `CaseDto`, its name and endpoint, its inputs and outputs (for
+//! `GET /v1/quantities`) and the building of a sweep of each case are all
+//! generated from the table.
 
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -11,47 +13,46 @@ use super::negotiate::Format;
 use super::request::{self, SweepRequest};
 use crate::http::dto::PrecisionDto;
 use crate::http::extract::parse_value;
-use crate::http::impacts::{
-    NormalRequest, ObliqueRequest, PlanarContactRequest, SpatialContactRequest, TangentialRequest,
-    TorsionalRequest,
-};
+use crate::http::impacts::impact_cases;
 use crate::http::problem::ApiError;
-use crate::impact::{BodiesImpact, Case, PlanarImpact, Precision, SpatialImpact, TorsionalImpact};
+use crate::impact::{Case, Precision};
 use crate::quantity::{Input, Output};
 use crate::sweep::{CaseSweep, Sweep};
 
-/// A checked sweep of any case, by the kind of impact it solves (one per
-/// request, so its variants' sizes do not matter).
-#[derive(Debug)]
-#[allow(clippy::large_enum_variant)]
-pub enum AnySweep {
-    /// The normal, oblique and tangential cases.
-    Planar(Sweep<CaseSweep<PlanarImpact>>),
-    /// The torsional case.
-    Torsional(Sweep<CaseSweep<TorsionalImpact>>),
-    /// Two bodies in the plane.
-    Bodies(Sweep<CaseSweep<BodiesImpact>>),
-    /// The contact in space.
-    Spatial(Sweep<CaseSweep<SpatialImpact>>),
-}
-
-/// Runs `$body` with `$s` bound to the sweep inside an [`AnySweep`].
+/// Runs `$body` with `$s` bound to the sweep inside an [`AnySweep`],
+/// whichever case it is.
 macro_rules! on_sweep {
     ($any:expr, $s:ident => $body:expr) => {
-        match $any {
-            AnySweep::Planar($s) => $body,
-            AnySweep::Torsional($s) => $body,
-            AnySweep::Bodies($s) => $body,
-            AnySweep::Spatial($s) => $body,
-        }
+        $crate::http::impacts::impact_cases!(crate::http::sweeps::cases::on_sweep_arms [$any, $s => $body])
     };
 }
 pub(crate) use on_sweep;
 
-/// Generates `CaseDto` and the building of each case's sweep from one row per
-/// case: `Variant => ("name", Request, AnySweep variant: Impact, |base| the impact)`.
+/// The match of [`on_sweep!`], one arm per row of the table of cases.
+macro_rules! on_sweep_arms {
+    ([$any:expr, $s:ident => $body:expr] $($case:ident => ($name:literal, $request:ty, $impact:ty, |$base:ident| $convert:expr),)*) => {
+        match $any {
+            $(AnySweep::$case($s) => $body,)*
+        }
+    };
+}
+pub(crate) use on_sweep_arms;
+
+/// Generates `AnySweep`, `CaseDto` and the building of each case's sweep
+/// from one row per case: `Variant => ("name", Request, Impact, |base| the impact)`.
 macro_rules! sweep_cases {
-    ($($case:ident => ($name:literal, $request:ty, $sweep:ident: $impact:ty, |$base:ident| $convert:expr),)*) => {
+    ([] $($case:ident => ($name:literal, $request:ty, $impact:ty, |$base:ident| $convert:expr),)*) => {
+        /// A checked sweep of any case (one per request, so its variants'
+        /// sizes do not matter).
+        #[derive(Debug)]
+        #[allow(clippy::large_enum_variant)]
+        pub enum AnySweep {
+            $(
+                #[doc = concat!("A sweep of `", $name, "` impacts.")]
+                $case(Sweep<CaseSweep<$impact>>),
+            )*
+        }
+
         /// The physical case a sweep evaluates.
         // The wire names are the variants' in snake case (a test checks that
         // they are the table's names): utoipa does not read a `rename` given
@@ -107,21 +108,14 @@ macro_rules! sweep_cases {
                     let $base = &base;
                     let impact: $impact = ($convert).map_err(|e: ApiError| e.under("/base"))?;
                     let (sweep, precision) = checked(request, impact, base.precision, limit, format)?;
-                    (AnySweep::$sweep(sweep), precision)
+                    (AnySweep::$case(sweep), precision)
                 })*
             })
         }
     };
 }
 
-sweep_cases! {
-    Normal => ("normal", NormalRequest, Planar: PlanarImpact, |base| PlanarImpact::try_from(base)),
-    Oblique => ("oblique", ObliqueRequest, Planar: PlanarImpact, |base| PlanarImpact::try_from(base)),
-    Tangential => ("tangential", TangentialRequest, Planar: PlanarImpact, |base| Ok(PlanarImpact::from(base))),
-    Torsional => ("torsional", TorsionalRequest, Torsional: TorsionalImpact, |base| Ok(TorsionalImpact::from(base))),
-    Planar => ("planar", PlanarContactRequest, Bodies: BodiesImpact, |base| BodiesImpact::try_from(base)),
-    Spatial => ("spatial", SpatialContactRequest, Spatial: SpatialImpact, |base| SpatialImpact::try_from(base)),
-}
+impact_cases!(sweep_cases []);
 
 /// The sweep of `base` the request describes, in its precision (the sweep's
 /// own, else the base's).
