@@ -104,7 +104,7 @@ def oblique_coulomb(vt, m=MASS, inertia=INERTIA, dc=TANGENTIAL_OFFSET, dd=NORMAL
     w_final = w + (dc - mu * dd) * per
 
     # Energies: T_L from the work of the impulse, T_M the loss when the contact
-    # point ends at rest (src/model/planar.rs, energy).
+    # point ends at rest (src/model/barrier.rs, energy).
     initial = 0.5 * m * (vn * vn + vt * vt) + 0.5 * inertia * w * w
     work = dn * ((1.0 - e) * vcn) + dt * (vct + vct_final)
     loss = -0.5 * m * work

@@ -7,14 +7,14 @@
 //! Fitted values are judged by the solver's own model: residuals and regimes
 //! are what [`crate::impact`] answers for the fitted coefficients.
 
-pub mod planar;
+pub mod bodies;
 pub mod spatial;
 pub mod tangential;
 pub mod torsional;
 
 use thiserror::Error;
 
-pub use planar::{Measured, MeasuredChange, PlanarFit, planar};
+pub use bodies::{Measured, MeasuredChange, PlanarFit, planar};
 pub use spatial::{ImpactFit, SpatialChange, SpatialFit, SpatialLaw, SpatialObservation, spatial};
 pub use tangential::{Observation, TangentialFit, impulse_ratio_from_intercept, tangential};
 pub use torsional::{TorsionalFit, TorsionalObservation, torsional};

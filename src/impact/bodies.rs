@@ -145,14 +145,7 @@ impl Case for BodiesImpact {
         ContactY => Some(&mut impact.contact.point[1]),
         NormalX => Some(&mut impact.contact.normal[0]),
         NormalY => Some(&mut impact.contact.normal[1]),
-        Restitution
-        | Friction
-        | ImpulseRatio
-        | TangentialRestitution
-        | KineticRestitution
-        | ApproachImpulseRatio
-        | ApproachFriction
-        | ReboundImpulseRatio => impact.law.input_mut(input),
+        law => impact.law.input_mut(input),
     });
 
     /// The law's coefficients in the general fast range; the bodies and the

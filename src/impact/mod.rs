@@ -30,9 +30,22 @@
 /// each slot an `Option<&mut f64>` of the impact bound to `$impact` (`None`
 /// where this impact does not read it: a point mass's inertia, body B of a
 /// barrier impact); `$input` names the input for entries that share a slot
-/// expression.
+/// expression. The entry `law => slot` stands for every member of every
+/// contact law (`src/law.rs`), in one place for every case that takes one.
 macro_rules! reads {
-    (|$impact:ident, $input:ident| { $($($name:ident)|+ => $slot:expr,)* }) => {
+    (|$impact:ident, $input:ident| { $($entries:tt)* }) => {
+        reads!(@entries [$impact $input] [] $($entries)*);
+    };
+    (@entries $names:tt [$($done:tt)*] law => $slot:expr, $($rest:tt)*) => {
+        reads!(@entries $names [$($done)*
+            Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
+            | ApproachImpulseRatio | ApproachFriction | ReboundImpulseRatio => $slot,
+        ] $($rest)*);
+    };
+    (@entries $names:tt [$($done:tt)*] $($name:ident)|+ => $slot:expr, $($rest:tt)*) => {
+        reads!(@entries $names [$($done)* $($name)|+ => $slot,] $($rest)*);
+    };
+    (@entries [$impact:ident $input:ident] [$($($name:ident)|+ => $slot:expr,)*]) => {
         const INPUTS: &'static [Input] = &[$($(Input::$name,)+)*];
 
         #[inline]
@@ -47,9 +60,9 @@ macro_rules! reads {
 }
 
 mod approach;
+mod barrier;
 mod bodies;
 mod entry;
-mod planar;
 mod spatial;
 mod torsional;
 

@@ -1,6 +1,6 @@
 //! One point contact between two laminae, or one against a fixed barrier, in
 //! world axes: the general planar contact whose special case is the paper's
-//! one body against a barrier (`planar.rs`).
+//! one body against a barrier (`barrier.rs`).
 //!
 //! Each body `b` has mass `m_b`, inertia `I_b` about its mass centre `G_b`,
 //! velocity `v_b` and angular velocity `ω_b`; the contact is a point `C` and a
@@ -19,7 +19,7 @@
 //! `P_t`) and the magnitudes `|ΔV|` are `x √y`, rounded as such.
 //!
 //! For one body against a barrier with `n = x̂` and `r_A = −(d_d, d_c)` this
-//! is `W̃ = W` of `planar.rs` divided by `m k²`; the laws (`contact.rs`) are the same code.
+//! is `W̃ = W` of `barrier.rs` divided by `m k²`; the laws (`contact.rs`) are the same code.
 
 use std::cmp::Ordering;
 

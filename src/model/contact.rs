@@ -1,5 +1,5 @@
 //! The laws of one point contact, written once in contact space for every
-//! scene: one lamina against a barrier (`planar.rs`) and two laminae, or one
+//! scene: one lamina against a barrier (`barrier.rs`) and two laminae, or one
 //! against a barrier, in world axes (`bodies.rs`).
 //!
 //! A scene reduces to its contact space: the approach velocity `s = −u_n > 0`,

@@ -2,7 +2,7 @@
 //! equations (Eqs A-1…A-3) closed by Eq 1 and one tangential law: the laws in
 //! the plane (`contact.rs`: frictionless, prescribed ratio, Coulomb friction,
 //! tangential restitution, the two phases), which one lamina against a
-//! barrier (`planar.rs`, the paper's frame, the point mass too) and laminae
+//! barrier (`barrier.rs`, the paper's frame, the point mass too) and laminae
 //! in world axes (`bodies.rs`) evaluate; the contact in space (`spatial/`),
 //! which reads every law as the same branches ([`crate::law::Reading`]); and
 //! the torsional law (`torsional.rs`).
@@ -18,9 +18,9 @@
 //! A physics change goes here, once; [`crate::impact`] validates the inputs
 //! and chooses the arithmetic.
 
+pub(crate) mod barrier;
 pub(crate) mod bodies;
 pub(crate) mod contact;
-pub(crate) mod planar;
 pub(crate) mod spatial;
 pub(crate) mod torsional;
 mod vector;

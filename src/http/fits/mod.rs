@@ -1,14 +1,14 @@
 //! `POST /v1/fits/tangential`, `/v1/fits/torsional`, `/v1/fits/planar`
-//! (`planar.rs`) and `/v1/fits/spatial` (`spatial.rs`): coefficients
+//! (`bodies.rs`) and `/v1/fits/spatial` (`spatial.rs`): coefficients
 //! identified from measured impacts (see [`crate::fit`]). The tangential and
 //! torsional fits also answer `image/svg+xml`: their points and fitted curve
 //! (`plot.rs`).
 
-mod planar;
+mod bodies;
 mod plot;
 mod spatial;
 
-pub use planar::*;
+pub use bodies::*;
 pub use spatial::*;
 
 use axum::Json;

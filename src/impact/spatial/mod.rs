@@ -351,8 +351,7 @@ impl Case for SpatialImpact {
         NormalX => Some(&mut impact.contact.normal[0]),
         NormalY => Some(&mut impact.contact.normal[1]),
         NormalZ => Some(&mut impact.contact.normal[2]),
-        Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
-        | ApproachImpulseRatio | ApproachFriction | ReboundImpulseRatio => impact.law.input_mut(input),
+        law => impact.law.input_mut(input),
         TorsionalRestitution => impact.torsion.as_mut().map(|t| &mut t.restitution),
         TorsionalFriction => impact.torsion.as_mut().map(|t| &mut t.friction),
         PitchRadius => impact.torsion.as_mut().map(|t| &mut t.pitch_radius),

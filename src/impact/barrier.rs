@@ -7,7 +7,7 @@ use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::input::{Law, PlanarBody, PlanarImpact};
 use crate::model::Exact;
-use crate::model::planar::{self as model, PointMass};
+use crate::model::barrier::{self as model, PointMass};
 use crate::outcome::{Outputs, PlanarOutcome};
 use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
 
@@ -163,14 +163,7 @@ impl Case for PlanarImpact {
             PlanarBody::PointMass { .. } => None,
         },
         // A point mass's law is frictionless: it reads `e` alone.
-        Restitution
-        | Friction
-        | ImpulseRatio
-        | TangentialRestitution
-        | KineticRestitution
-        | ApproachImpulseRatio
-        | ApproachFriction
-        | ReboundImpulseRatio => match impact.body {
+        law => match impact.body {
             PlanarBody::PointMass { .. } if input != Input::Restitution => None,
             _ => impact.law.input_mut(input),
         },
