@@ -1,7 +1,7 @@
 //! Coefficient identification from measured impacts, one module per model:
 //! [`tangential`](mod@tangential) (`e`, `f`, `e_t` of the bilinear tangential model, section 3),
 //! [`torsional`](mod@torsional) (`e`, `e_z`, `μ_z` of the torsional model, section 4)
-//! [`planar`](mod@planar) (`e`, `μ` and the normal of a two-body contact from the
+//! [`bodies`](mod@bodies) (`e`, `μ` and the normal of a two-body contact from the
 //! measured velocity changes, as reconstruction needs) and [`spatial`](mod@spatial)
 //! (any spatial law's coefficients from many measured impacts in space).
 //! Fitted values are judged by the solver's own model: residuals and regimes
