@@ -1,7 +1,9 @@
 //! The driver of `benches/scripts/solve-cost`: single solves of the precision
 //! bench's scenes, each timed as the best of seven runs of `n` solves, in
 //! `fast`, `exact` and plain f64 without bounds (`unfiltered`, the peer).
-//! Prints one line per arithmetic: ns per solve for each scene. Built with
+//! Prints one line per arithmetic: ns per solve for each scene, then one
+//! line of sweeps in `fast` (`restitution::sweep` over one input, one
+//! core): ns per point with every output and with one. Built with
 //! `--features many` and run with `--batch` (benches/scripts/batch-cost), it
 //! times instead each scene solved `n` times by a caller's loop over `solve`
 //! and by one `solve_many` over a slice, in `fast` and `exact`.
@@ -10,9 +12,10 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use restitution::impact::{Arithmetic, solve_in};
+use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
-    BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, RigidBody,
-    SpatialContact, SpatialImpact, Twist,
+    BodiesImpact, Case, Contact, Input, Lamina, Law, Output, Outputs, PlanarContact, PlanarImpact, PlanarVelocity,
+    Precision, RigidBody, SpatialContact, SpatialImpact, Twist,
 };
 
 fn oblique() -> PlanarImpact {
@@ -122,6 +125,44 @@ fn batch(n: u32) {
     }
 }
 
+/// ns per point of a `fast` sweep of `base` over `input` in `[start, stop]`
+/// (`points` points, one core), reading `outputs` (all of the case's when
+/// empty).
+fn sweep_ns<C: Case>(base: &C, input: Input, range: [f64; 2], points: u64, outputs: &[Output]) -> f64 {
+    let outputs = if outputs.is_empty() { C::OUTPUTS.to_vec() } else { outputs.to_vec() };
+    let case = CaseSweep::new(base, &[input], outputs, Precision::Fast).expect("an input of the case");
+    let values = AxisValues::Linspace { start: range[0], stop: range[1], count: points };
+    let sweep = Sweep::new(case, *base, vec![Axis { param: input, values }], Combine::Product, u64::MAX)
+        .expect("a valid sweep");
+    best_of_seven(1, || {
+        let mut sum = 0.0;
+        sweep.for_each_in(0..points, |row| {
+            if let Ok([Cell::Number(x), ..]) = row.outcome {
+                sum += x;
+            }
+        });
+        let _ = black_box(sum);
+    }) / points as f64
+}
+
+fn sweeps() {
+    let (p, b2, s2) = (oblique(), laminae(true), space(true, false));
+    let row = [
+        ("oblique_all", sweep_ns(&p, Input::TangentialVelocity, [-5.0, 5.0], 200_000, &[])),
+        (
+            "oblique_one",
+            sweep_ns(&p, Input::TangentialVelocity, [-5.0, 5.0], 200_000, &[Output::FinalTangentialContactVelocity]),
+        ),
+        ("two_laminae_all", sweep_ns(&b2, Input::VelocityAX, [-5.0, 5.0], 200_000, &[])),
+        ("space_two_all", sweep_ns(&s2, Input::VelocityAX, [-20.0, 20.0], 50_000, &[])),
+    ];
+    print!("{:>10}", "sweep");
+    for (scene, ns) in row {
+        print!("  {scene} {ns:.0}");
+    }
+    println!();
+}
+
 fn main() {
     let n: u32 = std::env::args().nth(1).map_or(100_000, |s| s.parse().expect("a count"));
     #[cfg(feature = "many")]
@@ -151,4 +192,5 @@ fn main() {
         }
         println!();
     }
+    sweeps();
 }
