@@ -53,8 +53,8 @@ pub enum Law {
         /// `μ_R = P_t^R / P_n^R`.
         rebound_impulse_ratio: f64,
     },
-    /// The two-phase law with Coulomb friction in the approach phase (in
-    /// space only): the approach sticks when the impulse that ends it with
+    /// The two-phase law with Coulomb friction in the approach phase (in the
+    /// plane and in space): the approach sticks when the impulse that ends it with
     /// `U = 0` has `|P_t| ≤ f_A P_n`, else slides with `|P_t| = f_A P_n`; the
     /// rebound is `R` times its normal impulse with ratio `μ_R` along the
     /// approach's tangential direction. With `μ_R = 0` it is the contact of
