@@ -9,6 +9,19 @@
 use crate::error::{ImpactError, Input, Result, finite, in_range};
 use crate::outcome::Regime;
 
+/// Expands to `$callback! { $args… Restitution | Friction | … }`: the
+/// [`Input`]s of every member of every law, in the order the cases list them
+/// (the one list of them; a case's `reads!` entry `law => slot` expands to it).
+macro_rules! law_members {
+    ($callback:ident ! { $($args:tt)* }) => {
+        $callback! { $($args)*
+            Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
+            | ApproachImpulseRatio | ApproachFriction | ReboundImpulseRatio
+        }
+    };
+}
+pub(crate) use law_members;
+
 /// The tangential law of a rigid-body impact, with its coefficients.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Law {

@@ -37,10 +37,10 @@ macro_rules! reads {
         reads!(@entries [$impact $input] [] $($entries)*);
     };
     (@entries $names:tt [$($done:tt)*] law => $slot:expr, $($rest:tt)*) => {
-        reads!(@entries $names [$($done)*
-            Restitution | Friction | ImpulseRatio | TangentialRestitution | KineticRestitution
-            | ApproachImpulseRatio | ApproachFriction | ReboundImpulseRatio => $slot,
-        ] $($rest)*);
+        $crate::law::law_members!(reads! { @law $names [$($done)*] ($slot) [$($rest)*] });
+    };
+    (@law $names:tt [$($done:tt)*] ($slot:expr) [$($rest:tt)*] $($member:ident)|+) => {
+        reads!(@entries $names [$($done)* $($member)|+ => $slot,] $($rest)*);
     };
     (@entries $names:tt [$($done:tt)*] $($name:ident)|+ => $slot:expr, $($rest:tt)*) => {
         reads!(@entries $names [$($done)* $($name)|+ => $slot,] $($rest)*);

@@ -123,6 +123,10 @@ async fn tangential_normal_and_torsional_endpoints_match_the_library() {
         expected.contact_velocity.r#final.tangential
     );
     assert_eq!(body["final_velocity"]["angular"], expected.final_velocity.angular);
+    // The oblique endpoint takes every law (one wire form): the same answer.
+    let (status, _, oblique) = app.post("/v1/impacts/oblique", &request).await;
+    assert_eq!(status, StatusCode::OK, "{oblique}");
+    assert_eq!(oblique, body);
 
     let point =
         json!({"body": {"mass": 2.0}, "velocity": {"normal": -3.0, "tangential": 1.0}, "restitution": 0.5});

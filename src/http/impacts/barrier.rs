@@ -6,7 +6,7 @@
 use serde::Deserialize;
 use utoipa::ToSchema;
 
-use super::law::{KineticRestitutionDto, law_of, law_problem};
+use super::law::{law_problem, law_request};
 use super::respond;
 use crate::error::{ImpactError, Input};
 use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
@@ -39,8 +39,10 @@ pub struct NormalRequest {
     pub precision: PrecisionDto,
 }
 
-/// An oblique impact: `restitution` with exactly one of `friction` or
-/// `impulse_ratio`, or `kinetic_restitution` alone.
+law_request! { in the plane;
+/// An oblique impact: `restitution` with exactly one tangential law
+/// (`friction`; `impulse_ratio`; `tangential_restitution` with `friction`),
+/// or `kinetic_restitution` alone.
 #[derive(Debug, Clone, Copy, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
@@ -57,20 +59,11 @@ pub struct ObliqueRequest {
     pub contact: ContactDto,
     /// Initial velocities.
     pub velocity: VelocityDto,
-    /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
-    pub restitution: Option<f64>,
-    /// f: Coulomb friction coefficient (≥ 0); the ratio is capped by the critical ratio μ_c.
-    #[schema(minimum = 0.0, example = 0.123)]
-    pub friction: Option<f64>,
-    /// μ = P_t / P_n: a prescribed impulse ratio (Eq 2); refused when it would create energy.
-    pub impulse_ratio: Option<f64>,
-    /// The two-phase kinetic model, in place of `restitution` and a tangential law.
-    pub kinetic_restitution: Option<KineticRestitutionDto>,
     /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
     /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
+}
 }
 
 /// An impact with tangential restitution (the bilinear model of section 3).
@@ -138,16 +131,10 @@ impl TryFrom<&NormalRequest> for PlanarImpact {
 impl TryFrom<&ObliqueRequest> for PlanarImpact {
     type Error = ApiError;
 
-    /// Exactly one law, read by the one wire parser (`law_of`): `restitution`
-    /// with `friction` or `impulse_ratio`, or `kinetic_restitution` alone.
+    /// Exactly one law, read by the one wire parser: `restitution` with a
+    /// tangential law, or `kinetic_restitution` alone.
     fn try_from(req: &ObliqueRequest) -> Result<Self, ApiError> {
-        let law = law_of(
-            req.restitution,
-            req.kinetic_restitution,
-            req.friction,
-            req.impulse_ratio,
-            None,
-        )?;
+        let law = req.law()?;
         if let Law::Frictionless { .. } = law {
             return Err(law_problem(
                 "/friction",

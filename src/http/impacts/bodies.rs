@@ -5,11 +5,11 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::law::{KineticRestitutionDto, law_of};
+use super::law::law_request;
 use super::respond;
 use crate::http::dto::{ContactVelocitiesOut, PlanarEnergyOut, PrecisionDto, RegimeDto};
 use crate::http::problem::ApiError;
-use crate::impact::{BodiesImpact, Lamina, Law, PlanarContact, Precision};
+use crate::impact::{BodiesImpact, Lamina, PlanarContact, Precision};
 use crate::outcome::{BodiesOutcome, BodyOutcome};
 
 /// A vector in world axes.
@@ -83,6 +83,7 @@ impl From<PlanarContactDto> for PlanarContact {
     }
 }
 
+law_request! { in the plane;
 /// One point contact between two laminae, or one and a fixed barrier, in
 /// world axes: `restitution` (or `kinetic_restitution`) and at most one
 /// tangential law (`friction`; `impulse_ratio`; `tangential_restitution`
@@ -105,35 +106,11 @@ pub struct PlanarContactRequest {
     pub bodies: Vec<LaminaDto>,
     /// The contact.
     pub contact: PlanarContactDto,
-    /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.2)]
-    pub restitution: Option<f64>,
-    /// The two-phase kinetic model, in place of `restitution` (regime `prescribed`).
-    pub kinetic_restitution: Option<KineticRestitutionDto>,
-    /// f: Coulomb friction coefficient (≥ 0).
-    #[schema(minimum = 0.0, example = 0.6)]
-    pub friction: Option<f64>,
-    /// μ = P_t / P_n: a prescribed signed impulse ratio along t = ẑ × n.
-    pub impulse_ratio: Option<f64>,
-    /// e_t: tangential coefficient of restitution in [−1, 1], capped by `friction`.
-    #[schema(minimum = -1.0, maximum = 1.0)]
-    pub tangential_restitution: Option<f64>,
     /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
     /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
 }
-
-impl PlanarContactRequest {
-    fn law(&self) -> Result<Law, ApiError> {
-        law_of(
-            self.restitution,
-            self.kinetic_restitution,
-            self.friction,
-            self.impulse_ratio,
-            self.tangential_restitution,
-        )
-    }
 }
 
 /// The refusal of a body count other than 1 or 2.

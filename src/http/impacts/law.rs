@@ -1,8 +1,10 @@
 //! The wire form of a contact law, one for every endpoint and sweep: the
 //! members `restitution`, `kinetic_restitution` (with `approach_impulse_ratio`
 //! or `approach_friction`), `friction`,
-//! `impulse_ratio` and `tangential_restitution`, read into a [`Law`] by one
-//! parser with one set of messages (`law_of`).
+//! `impulse_ratio` and `tangential_restitution`, declared once
+//! (`law_request!`, which every request taking any law is written in) and
+//! read into a [`Law`] by one parser with one set of messages (`law_of`).
+//! A law with new members adds them here.
 
 use axum::http::StatusCode;
 use serde::Deserialize;
@@ -35,6 +37,74 @@ pub struct KineticRestitutionDto {
     #[schema(example = -0.123)]
     pub rebound_impulse_ratio: f64,
 }
+
+/// Declares a request that takes any contact law: the struct as written,
+/// with every law member appended after its own fields, and its `law()`,
+/// the law they name (read by [`law_of`]). `in the plane` or `in space` says
+/// how the impulse ratios read (a signed `μ` along `t`, or magnitudes
+/// opposing the slip).
+macro_rules! law_request {
+    (in the plane; $($item:tt)*) => {
+        law_request!(@emit [
+            /// μ = P_t / P_n: a prescribed signed impulse ratio along the tangent t
+            /// (the paper's t; t = ẑ × n in world axes) (Eq 2); refused when it
+            /// would create energy.
+        ] [
+            /// The two-phase kinetic law (Appendix), in place of `restitution` and
+            /// a tangential law; `restitution` answers the equivalent e.
+        ] $($item)*);
+    };
+    (in space; $($item:tt)*) => {
+        law_request!(@emit [
+            /// μ ≥ 0: a prescribed impulse ratio |P_t| / P_n, the tangential
+            /// impulse opposing the slip; refused when it would create energy.
+            #[schema(minimum = 0.0)]
+        ] [
+            /// The two-phase kinetic law (Appendix), in place of `restitution` and
+            /// a tangential law: in space both impulse ratios are magnitudes (≥ 0)
+            /// along one direction opposing the initial slip; `restitution`
+            /// answers the equivalent e.
+        ] $($item)*);
+    };
+    (@emit [$($ratio:tt)*] [$($kinetic:tt)*]
+        $(#[$meta:meta])*
+        pub struct $name:ident { $($fields:tt)* }
+    ) => {
+        $(#[$meta])*
+        pub struct $name {
+            $($fields)*
+            /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
+            #[schema(minimum = 0.0, maximum = 1.0, example = 0.93)]
+            pub restitution: Option<f64>,
+            $($kinetic)*
+            pub kinetic_restitution: Option<$crate::http::impacts::law::KineticRestitutionDto>,
+            /// f: Coulomb friction coefficient (≥ 0), the cap of the tangential
+            /// impulse (|P_t| ≤ f P_n).
+            #[schema(minimum = 0.0, example = 0.123)]
+            pub friction: Option<f64>,
+            $($ratio)*
+            pub impulse_ratio: Option<f64>,
+            /// e_t: tangential coefficient of restitution (Eq 20) in [−1, 1],
+            /// with `friction` as its cap; −1 means no tangential impulse.
+            #[schema(minimum = -1.0, maximum = 1.0)]
+            pub tangential_restitution: Option<f64>,
+        }
+
+        impl $name {
+            /// The law the request's members name.
+            fn law(&self) -> Result<$crate::impact::Law, $crate::http::problem::ApiError> {
+                $crate::http::impacts::law::law_of(
+                    self.restitution,
+                    self.kinetic_restitution,
+                    self.friction,
+                    self.impulse_ratio,
+                    self.tangential_restitution,
+                )
+            }
+        }
+    };
+}
+pub(super) use law_request;
 
 /// A law whose members do not fit together, at the member the conventions name.
 pub(super) fn law_problem(pointer: &str, detail: &str) -> ApiError {

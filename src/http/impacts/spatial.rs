@@ -6,7 +6,7 @@ use utoipa::ToSchema;
 
 use super::bodies::body_count;
 pub use super::inertia::{InertiaDto, PrincipalDto, QuaternionDto, SphereDto, TensorDto};
-use super::law::{KineticRestitutionDto, law_of};
+use super::law::law_request;
 use super::respond;
 use crate::http::dto::{PlanarEnergyOut, PrecisionDto, RegimeDto, TorsionalRegimeDto};
 use crate::http::problem::ApiError;
@@ -104,6 +104,7 @@ pub struct TwistDto {
     pub pitch_radius: f64,
 }
 
+law_request! { in space;
 /// One point contact in space between two bodies, or one and a fixed barrier:
 /// `restitution` and at most one tangential law (`friction`; `impulse_ratio`,
 /// a magnitude opposing the slip; `tangential_restitution` with `friction`),
@@ -128,28 +129,13 @@ pub struct SpatialContactRequest {
     pub bodies: Vec<SpatialBodyDto>,
     /// The contact.
     pub contact: SpatialContactDto,
-    /// e: kinematic coefficient of restitution (Eq 1), in [0, 1].
-    #[schema(minimum = 0.0, maximum = 1.0, example = 0.75)]
-    pub restitution: Option<f64>,
-    /// The two-phase kinetic law instead of `restitution` (Appendix): in space
-    /// both impulse ratios are magnitudes (≥ 0) along one direction opposing
-    /// the initial slip; `restitution` answers the equivalent e.
-    pub kinetic_restitution: Option<KineticRestitutionDto>,
-    /// f: Coulomb friction coefficient (≥ 0).
-    #[schema(minimum = 0.0, example = 0.6)]
-    pub friction: Option<f64>,
-    /// μ ≥ 0: a prescribed impulse ratio |P_t| / P_n, the tangential impulse opposing the slip.
-    #[schema(minimum = 0.0)]
-    pub impulse_ratio: Option<f64>,
-    /// e_t: tangential coefficient of restitution in [−1, 1], capped by `friction`.
-    #[schema(minimum = -1.0, maximum = 1.0)]
-    pub tangential_restitution: Option<f64>,
     /// The twist law about the normal, if any.
     pub torsion: Option<TwistDto>,
     /// `fast` (default: exact decisions, every number within 2⁻³² of its scale) or
     /// `exact` (correctly rounded numbers, exact decisions).
     #[serde(default)]
     pub precision: PrecisionDto,
+}
 }
 
 impl TryFrom<&SpatialContactRequest> for SpatialImpact {
@@ -165,13 +151,7 @@ impl TryFrom<&SpatialContactRequest> for SpatialImpact {
             a,
             b,
             contact: req.contact.into(),
-            law: law_of(
-                req.restitution,
-                req.kinetic_restitution,
-                req.friction,
-                req.impulse_ratio,
-                req.tangential_restitution,
-            )?,
+            law: req.law()?,
             torsion: req.torsion.map(|t| Twist {
                 restitution: t.restitution,
                 friction: t.friction,
