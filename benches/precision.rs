@@ -15,14 +15,14 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use linear::{TangentialClosure, solve_momentum};
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
-    BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity, Precision,
+    BarrierImpact, BodiesImpact, Contact, Lamina, Law, Outputs, PlanarContact, PlanarVelocity, Precision,
     RigidBody, SpatialContact, SpatialImpact, Twist, solve,
 };
 
 use restitution_testkit::linear;
 
-fn impact() -> PlanarImpact {
-    PlanarImpact::rigid(
+fn impact() -> BarrierImpact {
+    BarrierImpact::rigid(
         1.3,
         0.021,
         Contact {

@@ -18,18 +18,18 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use restitution::impact::Arithmetic;
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
-    Case, Contact, Input, Law, Output, Outputs, PlanarBody, PlanarImpact, PlanarVelocity, Precision,
+    BarrierBody, BarrierImpact, Case, Contact, Input, Law, Output, Outputs, PlanarVelocity, Precision,
     TorsionalImpact, solve,
 };
 
 const POINTS: u64 = 200_000;
 
 /// Every planar output.
-const ALL: &[Output] = PlanarImpact::OUTPUTS;
+const ALL: &[Output] = BarrierImpact::OUTPUTS;
 
 /// A non-central lamina (d_c ≠ 0) so that no special path applies.
-fn base() -> PlanarImpact {
-    PlanarImpact::rigid(
+fn base() -> BarrierImpact {
+    BarrierImpact::rigid(
         1.0,
         0.00125,
         Contact {
@@ -48,7 +48,7 @@ fn base() -> PlanarImpact {
     )
 }
 
-fn sweep(param: Input, columns: &[Output], points: u64) -> Sweep<CaseSweep<PlanarImpact>> {
+fn sweep(param: Input, columns: &[Output], points: u64) -> Sweep<CaseSweep<BarrierImpact>> {
     sweep_in(param, columns, points, Arithmetic::Fast)
 }
 
@@ -58,7 +58,7 @@ fn sweep_in(
     columns: &[Output],
     points: u64,
     arithmetic: Arithmetic,
-) -> Sweep<CaseSweep<PlanarImpact>> {
+) -> Sweep<CaseSweep<BarrierImpact>> {
     let (start, stop) = match param {
         Input::Friction => (0.0, 1.0),
         _ => (-5.0, 5.0),
@@ -77,7 +77,7 @@ fn sweep_in(
 }
 
 /// Sums the first numeric cell of every row so nothing is optimised away.
-fn drive(s: &Sweep<CaseSweep<PlanarImpact>>, range: std::ops::Range<u64>) -> f64 {
+fn drive(s: &Sweep<CaseSweep<BarrierImpact>>, range: std::ops::Range<u64>) -> f64 {
     let mut sum = 0.0;
     s.for_each_in(range, |row| {
         if let Ok([Cell::Number(x), ..]) = row.outcome {
@@ -91,8 +91,8 @@ fn drive(s: &Sweep<CaseSweep<PlanarImpact>>, range: std::ops::Range<u64>) -> f64
 /// special cases: the model's arithmetic alone (inlined into each compiled
 /// copy of the loop).
 #[inline(always)]
-fn bare(p: &PlanarImpact) -> [f64; 9] {
-    let PlanarBody::Rigid {
+fn bare(p: &BarrierImpact) -> [f64; 9] {
+    let BarrierBody::Rigid {
         mass: m,
         inertia,
         contact,

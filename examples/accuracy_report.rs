@@ -31,7 +31,7 @@ use linear::{TangentialClosure, solve_momentum};
 use restitution::impact::{Arithmetic, Stage, fast_decisions_escalated, fast_outputs_escalated, solve_in};
 use restitution::plot::{Color, Figure, LegendEntry, Marker, Markers, Scale, Shape};
 use restitution::{
-    Body, Contact, Law, Outputs, PlanarImpact, PlanarScene, PlanarVelocity, Precision, Regime,
+    BarrierImpact, BarrierScene, Body, Contact, Law, Outputs, PlanarVelocity, Precision, Regime,
     TorsionalImpact, solve,
 };
 
@@ -59,7 +59,7 @@ struct PlanarPoint {
 }
 
 impl PlanarPoint {
-    fn impact(&self, kind: Kind) -> PlanarImpact {
+    fn impact(&self, kind: Kind) -> BarrierImpact {
         let restitution = self.restitution;
         let law = match kind {
             Kind::ImpulseRatio => Law::ImpulseRatio {
@@ -76,7 +76,7 @@ impl PlanarPoint {
                 tangential_restitution: self.tangential_restitution,
             },
         };
-        PlanarImpact::rigid(self.mass, self.inertia, self.contact, self.velocity, law)
+        BarrierImpact::rigid(self.mass, self.inertia, self.contact, self.velocity, law)
     }
 }
 
@@ -385,7 +385,7 @@ fn planar_rows(case: &'static str, law: Kind, set: Set, n: usize, rows: &mut Vec
         &inputs,
         reps_fast as u32,
         |(p, _, closure)| {
-            let scene = PlanarScene::new(Body::new(p.mass, p.inertia).ok()?, p.contact, p.velocity).ok()?;
+            let scene = BarrierScene::new(Body::new(p.mass, p.inertia).ok()?, p.contact, p.velocity).ok()?;
             solve_momentum(&scene, p.restitution, (*closure)?)
         },
         compare,

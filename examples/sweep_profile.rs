@@ -19,14 +19,14 @@
 
 use restitution::impact::Arithmetic;
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
-use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity};
+use restitution::{BarrierImpact, Contact, Input, Law, Output, PlanarVelocity};
 
 fn main() {
     if std::env::var("RESTITUTION_KERNELS").as_deref() == Ok("portable") {
         restitution::kernels::force_portable();
     }
     eprintln!("kernels: {}", restitution::kernels::selected().as_str());
-    let base = PlanarImpact::rigid(
+    let base = BarrierImpact::rigid(
         1.0,
         0.00125,
         Contact {

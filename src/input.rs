@@ -3,6 +3,9 @@
 //! them and the front door (`src/impact/`) validates them and says what
 //! each case reads; both depend on these types, neither on the other.
 
+/// The earlier names of [`BarrierImpact`] and [`BarrierBody`], kept for callers.
+#[allow(deprecated)]
+pub use crate::deprecated_names::{PlanarBody, PlanarImpact};
 pub use crate::law::Law;
 use crate::scene::{Contact, PlanarVelocity};
 
@@ -10,7 +13,7 @@ use crate::scene::{Contact, PlanarVelocity};
 
 /// The body of a planar impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PlanarBody {
+pub enum BarrierBody {
     /// A point mass: no inertia, no contact offset, no rotation; its law is
     /// frictionless restitution.
     PointMass {
@@ -34,9 +37,9 @@ pub enum PlanarBody {
 /// [`Law::Frictionless`] law; any other combination is refused when solved
 /// (a spin or a tangential law needs a moment of inertia).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlanarImpact {
+pub struct BarrierImpact {
     /// The body.
-    pub body: PlanarBody,
+    pub body: BarrierBody,
     /// Initial velocities of the centre of mass and angular velocity.
     pub velocity: PlanarVelocity,
     /// The tangential law and its coefficients.

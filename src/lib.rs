@@ -11,7 +11,7 @@
 //! The solver (every module but `http`) is pure: no I/O, no async, no
 //! allocation per impact. A request flows through:
 //!
-//! - [`input`]: what an impact is given, per case ([`PlanarImpact`] with its
+//! - [`input`]: what an impact is given, per case ([`BarrierImpact`] with its
 //!   [`Law`], [`TorsionalImpact`], [`BodiesImpact`], [`SpatialImpact`]);
 //! - [`impact`]: the front door. What each case reads ([`Case`]) and
 //!   [`solve`]: validation, the fast range check, the choice of arithmetic,
@@ -34,9 +34,9 @@
 //! `docs/physics.md`.
 //!
 //! ```
-//! use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
+//! use restitution::{Contact, Law, Outputs, BarrierImpact, PlanarVelocity, Precision, solve};
 //!
-//! let disc = PlanarImpact::rigid(
+//! let disc = BarrierImpact::rigid(
 //!     1.0,                    // m (kg)
 //!     0.00125,                // I = m k² (kg·m²)
 //!     Contact::central(0.05), // G 0.05 m above the contact point
@@ -75,11 +75,29 @@ pub mod http;
 pub use accuracy::{ErrorScales, PROMISED_RELATIVE_ERROR};
 pub use error::{AdmissibleInterval, ImpactError, Input, Output, Result};
 pub use impact::{
-    BodiesImpact, Case, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, Precision, RigidBody,
+    BarrierBody, BarrierImpact, BodiesImpact, Case, Lamina, Law, PlanarContact, Precision, RigidBody,
     SpatialContact, SpatialImpact, TorsionalImpact, Twist, solve, solve_many,
 };
 pub use outcome::{
-    Answers, BodiesOutcome, BodyOutcome, Outputs, PlanarOutcome, Regime, SpatialBodyOutcome, SpatialOutcome,
+    Answers, BarrierOutcome, BodiesOutcome, BodyOutcome, Outputs, Regime, SpatialBodyOutcome, SpatialOutcome,
     TorsionalOutcome, TorsionalRegime, WorldImpulse,
 };
-pub use scene::{Body, Contact, ContactVelocity, PlanarScene, PlanarVelocity};
+pub use scene::{BarrierScene, Body, Contact, ContactVelocity, PlanarVelocity};
+
+/// The earlier names of one body against a barrier (the paper's frame),
+/// kept for callers: "planar" now names the contact in the plane in world
+/// axes (`POST /v1/impacts/planar`, [`BodiesImpact`]).
+#[allow(deprecated)]
+pub use deprecated_names::*;
+
+mod deprecated_names {
+    #![allow(missing_docs)]
+    #[deprecated(note = "renamed `BarrierImpact`: one body against a barrier")]
+    pub type PlanarImpact = crate::BarrierImpact;
+    #[deprecated(note = "renamed `BarrierBody`")]
+    pub type PlanarBody = crate::BarrierBody;
+    #[deprecated(note = "renamed `BarrierOutcome`")]
+    pub type PlanarOutcome = crate::BarrierOutcome;
+    #[deprecated(note = "renamed `BarrierScene`")]
+    pub type PlanarScene = crate::BarrierScene;
+}

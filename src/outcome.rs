@@ -5,6 +5,10 @@
 use crate::quantity::{Output, Value};
 use crate::scene::{ContactVelocity, PlanarVelocity};
 
+/// The earlier name of [`BarrierOutcome`], kept for callers.
+#[allow(deprecated)]
+pub use crate::deprecated_names::PlanarOutcome;
+
 /// An outcome type's outputs, declared once by `answers!`: the outputs it
 /// answers in response order, and how each is read off an outcome. Every
 /// list of a case's outputs (its response, its sweep columns, the model's
@@ -146,7 +150,7 @@ impl Default for Outputs {
 
 /// The outcome of a planar impact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PlanarOutcome {
+pub struct BarrierOutcome {
     /// Final velocities `V_n`, `V_t`, `Ω`.
     pub final_velocity: PlanarVelocity,
     /// Initial and final contact-point velocities.
@@ -375,7 +379,7 @@ pub struct SpatialOutcome {
     pub energy: Option<PlanarEnergy>,
 }
 
-answers!(PlanarOutcome {
+answers!(BarrierOutcome {
     FinalNormalVelocity => |o| o.final_velocity.normal,
     FinalTangentialVelocity => |o| o.final_velocity.tangential,
     FinalAngularVelocity => |o| o.final_velocity.angular,
@@ -553,7 +557,7 @@ mod tests {
                 assert!(!O::OUTPUTS[i + 1..].contains(o), "{o:?} twice");
             }
         }
-        check::<PlanarOutcome>();
+        check::<BarrierOutcome>();
         check::<TorsionalOutcome>();
         check::<BodiesOutcome>();
         check::<SpatialOutcome>();
@@ -583,6 +587,6 @@ mod tests {
         assert_eq!(barrier.value(Output::FinalVelocityAX), Some(Value::Number(0.0)));
         assert_eq!(barrier.value(Output::Regime), Some(Value::Text("frictionless")));
         assert_eq!(barrier.value(Output::SwitchSpin), None);
-        assert_eq!(PlanarOutcome::default().value(Output::FinalSpin), None);
+        assert_eq!(BarrierOutcome::default().value(Output::FinalSpin), None);
     }
 }

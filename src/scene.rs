@@ -9,6 +9,10 @@
 use crate::arith::{Field, Fraction};
 use crate::error::{AdmissibleInterval, ImpactError, Input, Output, Result, finite, finite_output, positive};
 
+/// The earlier name of [`BarrierScene`], kept for callers.
+#[allow(deprecated)]
+pub use crate::deprecated_names::PlanarScene;
+
 /// A rigid lamina: mass `m` and centroidal moment of inertia `I = m k²`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Body {
@@ -83,7 +87,7 @@ pub struct ContactVelocity {
 /// A validated planar scene: a body, its contact with the barrier and its
 /// initial velocities, with the contact point approaching the barrier.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlanarScene {
+pub struct BarrierScene {
     pub(crate) body: Body,
     pub(crate) contact: Contact,
     pub(crate) velocity: PlanarVelocity,
@@ -93,7 +97,7 @@ pub struct PlanarScene {
     pub(crate) contact_velocity: ContactVelocity,
 }
 
-impl PlanarScene {
+impl BarrierScene {
     /// Builds the scene, checking that every number is finite and that the
     /// contact approaches the barrier (`v_cn = v_n + d_c ω < 0`).
     ///
@@ -271,10 +275,10 @@ fn below_range_approaching(contact: Contact, velocity: PlanarVelocity) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::impact::{Law, PlanarImpact, Precision, solve};
+    use crate::impact::{BarrierImpact, Law, Precision, solve};
     use crate::outcome::Outputs;
 
-    fn scenes() -> impl Iterator<Item = PlanarScene> {
+    fn scenes() -> impl Iterator<Item = BarrierScene> {
         let mut rng = crate::rng::Rng::new(0x2545_f491_4f6c_dd1d);
         let mut unit = move || rng.unit();
         (0..1000).map(move |_| {
@@ -289,7 +293,7 @@ mod tests {
                 tangential: 4.0 * unit() - 2.0,
                 angular,
             };
-            PlanarScene::new(Body::new(1.0, k * k).unwrap(), contact, velocity).unwrap()
+            BarrierScene::new(Body::new(1.0, k * k).unwrap(), contact, velocity).unwrap()
         })
     }
 
@@ -301,7 +305,7 @@ mod tests {
                 assert!(interval.contains(0.0));
                 for bound in [interval.lower, interval.upper].into_iter().flatten() {
                     let inside = bound * (1.0 - 1e-9);
-                    let impact = PlanarImpact::in_scene(
+                    let impact = BarrierImpact::in_scene(
                         &scene,
                         Law::ImpulseRatio {
                             restitution: e,

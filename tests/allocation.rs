@@ -6,7 +6,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Combine, Sweep, SweepCase};
-use restitution::{Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision, TorsionalImpact};
+use restitution::{BarrierImpact, Contact, Input, Law, Output, PlanarVelocity, Precision, TorsionalImpact};
 
 struct Counting;
 
@@ -33,8 +33,8 @@ fn allocations_for<C: SweepCase>(sweep: &Sweep<C>, points: u64) -> u64 {
     ALLOCATIONS.load(Ordering::Relaxed) - before
 }
 
-fn planar(law: Law, param: Input, columns: Vec<Output>) -> Sweep<CaseSweep<PlanarImpact>> {
-    let base = PlanarImpact::rigid(
+fn planar(law: Law, param: Input, columns: Vec<Output>) -> Sweep<CaseSweep<BarrierImpact>> {
+    let base = BarrierImpact::rigid(
         1.0,
         0.00125,
         Contact {

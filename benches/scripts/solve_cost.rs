@@ -14,12 +14,12 @@ use std::time::Instant;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
-    BodiesImpact, Case, Contact, Input, Lamina, Law, Output, Outputs, PlanarContact, PlanarImpact, PlanarVelocity,
+    BodiesImpact, Case, Contact, Input, Lamina, Law, Output, Outputs, PlanarContact, BarrierImpact, PlanarVelocity,
     Precision, RigidBody, SpatialContact, SpatialImpact, Twist,
 };
 
-fn oblique() -> PlanarImpact {
-    PlanarImpact::rigid(
+fn oblique() -> BarrierImpact {
+    BarrierImpact::rigid(
         1.3,
         0.021,
         Contact { tangential_offset: 0.07, normal_offset: 0.11 },

@@ -16,9 +16,9 @@
 //! of the observations beyond rounding.
 
 use super::{Estimate, FitError, mean, through_origin};
-use crate::impact::{Law, PlanarImpact, Precision, solve};
-use crate::outcome::{Outputs, PlanarOutcome, Regime};
-use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
+use crate::impact::{BarrierImpact, Law, Precision, solve};
+use crate::outcome::{BarrierOutcome, Outputs, Regime};
+use crate::scene::{BarrierScene, Body, Contact, PlanarVelocity};
 
 /// One measured planar impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,7 +54,7 @@ pub struct TangentialFit {
 
 /// What one observation contributes.
 struct Point {
-    scene: PlanarScene,
+    scene: BarrierScene,
     vcn: f64,
     vct: f64,
     final_vcn: f64,
@@ -65,7 +65,7 @@ struct Point {
 
 fn prepare(index: usize, o: &Observation) -> Result<Point, FitError> {
     let bad = |why: String| FitError::NotAnImpact { index, why };
-    let scene = PlanarScene::new(o.body, o.contact, o.initial).map_err(|e| bad(e.to_string()))?;
+    let scene = BarrierScene::new(o.body, o.contact, o.initial).map_err(|e| bad(e.to_string()))?;
     let f = o.r#final;
     if ![f.normal, f.tangential, f.angular].iter().all(|x| x.is_finite()) {
         return Err(bad("a final velocity is not finite".to_owned()));
@@ -91,8 +91,8 @@ fn prepare(index: usize, o: &Observation) -> Result<Point, FitError> {
 }
 
 /// The model's answer for a measured scene under fitted coefficients.
-fn predict(scene: &PlanarScene, e: f64, f: f64, et: f64) -> crate::error::Result<PlanarOutcome> {
-    let impact = PlanarImpact::in_scene(
+fn predict(scene: &BarrierScene, e: f64, f: f64, et: f64) -> crate::error::Result<BarrierOutcome> {
+    let impact = BarrierImpact::in_scene(
         scene,
         Law::TangentialRestitution {
             restitution: e,
@@ -229,7 +229,7 @@ mod tests {
                     tangential: 0.05 + 0.06 * f64::from(i),
                     angular: 0.0,
                 };
-                let scene = PlanarScene::new(body, contact, initial).unwrap();
+                let scene = BarrierScene::new(body, contact, initial).unwrap();
                 let o = predict(&scene, e, f, et).unwrap();
                 let v = o.final_velocity;
                 Observation {

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use crate::impact::Precision;
-use crate::outcome::{PlanarOutcome, Regime};
+use crate::outcome::{BarrierOutcome, Regime};
 use crate::outcome::{TorsionalOutcome, TorsionalRegime};
 use crate::scene::{Contact, ContactVelocity, PlanarVelocity};
 
@@ -271,7 +271,7 @@ pub struct PlanarResponse {
 
 impl PlanarResponse {
     /// Maps a solver outcome computed with every output in `precision`.
-    pub fn from_outcome(o: &PlanarOutcome, precision: Precision) -> Self {
+    pub fn from_outcome(o: &BarrierOutcome, precision: Precision) -> Self {
         PlanarResponse {
             final_velocity: PlanarVelocityOut {
                 normal: o.final_velocity.normal,

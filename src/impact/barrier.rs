@@ -5,17 +5,17 @@ use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate};
 use crate::accuracy::{ErrorScales, ScalesOf};
 use crate::arith::Radical;
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
-use crate::input::{Law, PlanarBody, PlanarImpact};
+use crate::input::{BarrierBody, BarrierImpact, Law};
 use crate::model::Exact;
 use crate::model::barrier::{self as model, PointMass};
-use crate::outcome::{Outputs, PlanarOutcome};
-use crate::scene::{Body, Contact, PlanarScene, PlanarVelocity};
+use crate::outcome::{BarrierOutcome, Outputs};
+use crate::scene::{BarrierScene, Body, Contact, PlanarVelocity};
 
-impl PlanarImpact {
+impl BarrierImpact {
     /// A rigid body's impact.
     pub fn rigid(mass: f64, inertia: f64, contact: Contact, velocity: PlanarVelocity, law: Law) -> Self {
-        PlanarImpact {
-            body: PlanarBody::Rigid {
+        BarrierImpact {
+            body: BarrierBody::Rigid {
                 mass,
                 inertia,
                 contact,
@@ -26,9 +26,9 @@ impl PlanarImpact {
     }
 
     /// The rigid body's impact in a scene already validated, under `law`.
-    pub fn in_scene(scene: &PlanarScene, law: Law) -> Self {
+    pub fn in_scene(scene: &BarrierScene, law: Law) -> Self {
         let body = scene.body();
-        PlanarImpact::rigid(
+        BarrierImpact::rigid(
             body.mass(),
             body.inertia(),
             scene.contact(),
@@ -39,8 +39,8 @@ impl PlanarImpact {
 
     /// A point mass's normal impact with restitution `e`.
     pub fn point_mass(mass: f64, normal_velocity: f64, tangential_velocity: f64, restitution: f64) -> Self {
-        PlanarImpact {
-            body: PlanarBody::PointMass { mass },
+        BarrierImpact {
+            body: BarrierBody::PointMass { mass },
             velocity: PlanarVelocity {
                 normal: normal_velocity,
                 tangential: tangential_velocity,
@@ -51,14 +51,14 @@ impl PlanarImpact {
     }
 
     /// The validated scene of a rigid body: finite inputs, an approaching contact.
-    pub fn scene(&self) -> Result<PlanarScene> {
+    pub fn scene(&self) -> Result<BarrierScene> {
         match self.body {
-            PlanarBody::Rigid {
+            BarrierBody::Rigid {
                 mass,
                 inertia,
                 contact,
-            } => PlanarScene::new(Body::new(mass, inertia)?, contact, self.velocity),
-            PlanarBody::PointMass { .. } => Err(ImpactError::NeedsInertia {
+            } => BarrierScene::new(Body::new(mass, inertia)?, contact, self.velocity),
+            BarrierBody::PointMass { .. } => Err(ImpactError::NeedsInertia {
                 input: Input::TangentialOffset,
             }),
         }
@@ -106,20 +106,20 @@ fn law_input(law: &Law) -> Input {
 /// axis changes it, and its law when no axis changes that.
 #[derive(Debug, Clone)]
 pub struct Fixed {
-    scene: Option<Result<PlanarScene>>,
+    scene: Option<Result<BarrierScene>>,
     law: Option<Result<Law>>,
 }
 
 /// A validated rigid-body impact, ready to run in any field.
 struct Rigid<'a> {
-    scene: &'a PlanarScene,
+    scene: &'a BarrierScene,
     law: Law,
     outputs: Outputs,
 }
 
-impl Model<PlanarOutcome> for Rigid<'_> {
+impl Model<BarrierOutcome> for Rigid<'_> {
     #[inline(always)]
-    fn run<N: Radical>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut BarrierOutcome) -> Exact<N, ()> {
         model::rigid::<N>(self.scene, &self.law, self.outputs, out)
     }
 }
@@ -129,42 +129,42 @@ struct Point {
     outputs: Outputs,
 }
 
-impl Model<PlanarOutcome> for Point {
+impl Model<BarrierOutcome> for Point {
     #[inline(always)]
-    fn run<N: Radical>(&self, out: &mut PlanarOutcome) -> Exact<N, ()> {
+    fn run<N: Radical>(&self, out: &mut BarrierOutcome) -> Exact<N, ()> {
         model::point_mass::<N>(&self.mass, self.outputs, out)
     }
 }
 
-impl Case for PlanarImpact {
-    type Outcome = PlanarOutcome;
+impl Case for BarrierImpact {
+    type Outcome = BarrierOutcome;
     type Fixed = Fixed;
 
     reads!(|impact, input| {
         Mass => match &mut impact.body {
-            PlanarBody::PointMass { mass } | PlanarBody::Rigid { mass, .. } => Some(mass),
+            BarrierBody::PointMass { mass } | BarrierBody::Rigid { mass, .. } => Some(mass),
         },
         Inertia => match &mut impact.body {
-            PlanarBody::Rigid { inertia, .. } => Some(inertia),
-            PlanarBody::PointMass { .. } => None,
+            BarrierBody::Rigid { inertia, .. } => Some(inertia),
+            BarrierBody::PointMass { .. } => None,
         },
         TangentialOffset => match &mut impact.body {
-            PlanarBody::Rigid { contact, .. } => Some(&mut contact.tangential_offset),
-            PlanarBody::PointMass { .. } => None,
+            BarrierBody::Rigid { contact, .. } => Some(&mut contact.tangential_offset),
+            BarrierBody::PointMass { .. } => None,
         },
         NormalOffset => match &mut impact.body {
-            PlanarBody::Rigid { contact, .. } => Some(&mut contact.normal_offset),
-            PlanarBody::PointMass { .. } => None,
+            BarrierBody::Rigid { contact, .. } => Some(&mut contact.normal_offset),
+            BarrierBody::PointMass { .. } => None,
         },
         NormalVelocity => Some(&mut impact.velocity.normal),
         TangentialVelocity => Some(&mut impact.velocity.tangential),
         AngularVelocity => match impact.body {
-            PlanarBody::Rigid { .. } => Some(&mut impact.velocity.angular),
-            PlanarBody::PointMass { .. } => None,
+            BarrierBody::Rigid { .. } => Some(&mut impact.velocity.angular),
+            BarrierBody::PointMass { .. } => None,
         },
         // A point mass's law is frictionless: it reads `e` alone.
         law => match impact.body {
-            PlanarBody::PointMass { .. } if input != Input::Restitution => None,
+            BarrierBody::PointMass { .. } if input != Input::Restitution => None,
             _ => impact.law.input_mut(input),
         },
     });
@@ -174,8 +174,8 @@ impl Case for PlanarImpact {
     #[inline]
     fn all_in_fast_range(&self) -> bool {
         let body = match self.body {
-            PlanarBody::PointMass { mass } => [mass, 0.0, 0.0, 0.0],
-            PlanarBody::Rigid {
+            BarrierBody::PointMass { mass } => [mass, 0.0, 0.0, 0.0],
+            BarrierBody::Rigid {
                 mass,
                 inertia,
                 contact,
@@ -191,8 +191,8 @@ impl Case for PlanarImpact {
     fn error_scales(&self) -> ErrorScales {
         let v = &self.velocity;
         let (mass, arm) = match self.body {
-            PlanarBody::PointMass { mass } => (mass, 0.0),
-            PlanarBody::Rigid { mass, contact, .. } => {
+            BarrierBody::PointMass { mass } => (mass, 0.0),
+            BarrierBody::Rigid { mass, contact, .. } => {
                 let (c, d) = (contact.tangential_offset, contact.normal_offset);
                 (mass, c.mul_add(c, d * d).sqrt())
             }
@@ -204,8 +204,8 @@ impl Case for PlanarImpact {
 
     fn describe(&self) -> &'static str {
         match self.body {
-            PlanarBody::PointMass { .. } => "a point mass",
-            PlanarBody::Rigid { .. } => self.law.describe(),
+            BarrierBody::PointMass { .. } => "a point mass",
+            BarrierBody::Rigid { .. } => self.law.describe(),
         }
     }
 
@@ -219,7 +219,7 @@ impl Case for PlanarImpact {
             Input::TangentialVelocity,
             Input::AngularVelocity,
         ];
-        let rigid = matches!(self.body, PlanarBody::Rigid { .. });
+        let rigid = matches!(self.body, BarrierBody::Rigid { .. });
         // Every other input of the case is the law's.
         let (scene_swept, law_swept) = (
             swept.iter().any(|i| SCENE.contains(i)),
@@ -238,12 +238,12 @@ impl Case for PlanarImpact {
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
-        out: &mut PlanarOutcome,
+        out: &mut BarrierOutcome,
     ) -> (Result<()>, Stage) {
         let stage = arithmetic.validating_stage();
         let refused = |e| (Err(e), stage);
         match self.body {
-            PlanarBody::PointMass { mass } => match self.point_mass_inputs(mass) {
+            BarrierBody::PointMass { mass } => match self.point_mass_inputs(mass) {
                 Ok(mass) => evaluate(
                     arithmetic,
                     in_range,
@@ -254,7 +254,7 @@ impl Case for PlanarImpact {
                 ),
                 Err(e) => refused(e),
             },
-            PlanarBody::Rigid { .. } => {
+            BarrierBody::Rigid { .. } => {
                 let built;
                 let scene = match &fixed.scene {
                     Some(Ok(scene)) => scene,
@@ -295,7 +295,7 @@ mod tests {
     /// under each law reads its body and exactly that law's coefficients.
     #[test]
     fn reads_follow_the_body_and_the_law() {
-        let point = PlanarImpact::point_mass(2.0, -1.0, 0.5, 0.75);
+        let point = BarrierImpact::point_mass(2.0, -1.0, 0.5, 0.75);
         assert_eq!(
             point.reads(),
             [
@@ -334,9 +334,9 @@ mod tests {
             ),
         ];
         for (law, coefficients) in laws {
-            let rigid = PlanarImpact::rigid(1.0, 0.5, Contact::central(0.25), velocity, law);
+            let rigid = BarrierImpact::rigid(1.0, 0.5, Contact::central(0.25), velocity, law);
             let reads = rigid.reads();
-            assert_eq!(reads[..7], PlanarImpact::INPUTS[..7]);
+            assert_eq!(reads[..7], BarrierImpact::INPUTS[..7]);
             assert_eq!(reads[7..], coefficients);
         }
     }

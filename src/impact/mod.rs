@@ -75,7 +75,7 @@ use crate::arith::{
 };
 use crate::error::{Input, Output, Result};
 pub use crate::input::{
-    BodiesImpact, Lamina, Law, PlanarBody, PlanarContact, PlanarImpact, RigidBody, SpatialContact,
+    BarrierBody, BarrierImpact, BodiesImpact, Lamina, Law, PlanarContact, RigidBody, SpatialContact,
     SpatialImpact, TorsionalImpact, Twist,
 };
 use crate::model::{Exact, Fail};
@@ -83,6 +83,9 @@ use crate::outcome::{Answers, Outputs};
 use crate::quantity::Value;
 
 pub use self::entry::{Solver, solve, solve_in, solve_many};
+/// The earlier names of [`BarrierImpact`] and [`BarrierBody`], kept for callers.
+#[allow(deprecated)]
+pub use crate::deprecated_names::{PlanarBody, PlanarImpact};
 
 /// Which arithmetic answers a request.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

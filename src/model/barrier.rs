@@ -19,13 +19,13 @@ use super::{Exact, half, out};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
 use crate::input::Law;
-use crate::outcome::{ContactVelocities, Impulse, Outputs, PlanarEnergy, PlanarOutcome, Regime};
-use crate::scene::{ContactVelocity, PlanarScene, PlanarVelocity};
+use crate::outcome::{BarrierOutcome, ContactVelocities, Impulse, Outputs, PlanarEnergy, Regime};
+use crate::scene::{BarrierScene, ContactVelocity, PlanarVelocity};
 
 /// A planar scene in the field: every input exactly, and `v_cn`, `v_ct`, `k²`, `S`.
 struct Scene<'a, N> {
     /// The validated f64 scene (for error payloads and the fused contact velocities).
-    fast: &'a PlanarScene,
+    fast: &'a BarrierScene,
     m: N,
     inertia: N,
     k2: N,
@@ -42,7 +42,7 @@ struct Scene<'a, N> {
 
 impl<'a, N: Field> Scene<'a, N> {
     #[inline(always)]
-    fn new(fast: &'a PlanarScene) -> Self {
+    fn new(fast: &'a BarrierScene) -> Self {
         let m = N::of(fast.body.mass());
         let inertia = N::of(fast.body.inertia());
         let dc = N::of(fast.contact.tangential_offset);
@@ -99,7 +99,7 @@ impl<'a, N: Field> Scene<'a, N> {
 impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     /// `ΔΩ`.
     type Turn = N;
-    type Outcome = PlanarOutcome;
+    type Outcome = BarrierOutcome;
 
     #[inline(always)]
     fn reduced(&self) -> &Reduced<N> {
@@ -174,7 +174,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     /// impulses (Kelvin and Tait, as in the Appendix), which never subtracts
     /// two nearly equal energies.
     #[inline(always)]
-    fn assemble(&self, x: &Assembly<'_, N, N>, outcome: &mut PlanarOutcome) -> Exact<N, ()> {
+    fn assemble(&self, x: &Assembly<'_, N, N>, outcome: &mut BarrierOutcome) -> Exact<N, ()> {
         let a = x.answer;
         let e = x.e;
         let w = self.w.add(&a.turn);
@@ -229,7 +229,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
                 fused.tangential
             },
         };
-        *outcome = PlanarOutcome {
+        *outcome = BarrierOutcome {
             final_velocity,
             contact_velocity: ContactVelocities {
                 initial,
@@ -290,10 +290,10 @@ impl<N: Field> Scene<'_, N> {
 /// under a validated law.
 #[inline(always)]
 pub(crate) fn rigid<N: Field>(
-    scene: &PlanarScene,
+    scene: &BarrierScene,
     law: &Law,
     outputs: Outputs,
-    out: &mut PlanarOutcome,
+    out: &mut BarrierOutcome,
 ) -> Exact<N, ()> {
     under_law(&Scene::<N>::new(scene), law, outputs, out)
 }
@@ -314,7 +314,7 @@ pub(crate) struct PointMass {
 pub(crate) fn point_mass<N: Field>(
     p: &PointMass,
     outputs: Outputs,
-    outcome: &mut PlanarOutcome,
+    outcome: &mut BarrierOutcome,
 ) -> Exact<N, ()> {
     let PointMass { mass, vn, vt, e } = *p;
     let (m, vn_n, vt_n, e_n) = (N::of(mass), N::of(vn), N::of(vt), N::of(e));
@@ -346,7 +346,7 @@ pub(crate) fn point_mass<N: Field>(
     } else {
         None
     };
-    *outcome = PlanarOutcome {
+    *outcome = BarrierOutcome {
         final_velocity: PlanarVelocity {
             normal: final_normal,
             tangential: vt + 0.0,

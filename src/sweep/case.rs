@@ -110,12 +110,12 @@ impl<C: Case> SweepCase for CaseSweep<C> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::impact::{Law, PlanarImpact, TorsionalImpact, solve};
+    use crate::impact::{BarrierImpact, Law, TorsionalImpact, solve};
     use crate::scene::{Contact, PlanarVelocity};
     use crate::sweep::{Axis, AxisValues, Combine, Sweep};
 
-    fn maw(friction: f64) -> PlanarImpact {
-        PlanarImpact::rigid(
+    fn maw(friction: f64) -> BarrierImpact {
+        BarrierImpact::rigid(
             1.0,
             0.5 * 0.05 * 0.05,
             Contact {

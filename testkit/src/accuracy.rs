@@ -5,7 +5,7 @@
 use super::Rng;
 use super::reference::{self as exact, Outcome, Q, Refusal, q, ulps};
 use num_traits::Signed;
-use restitution::{Body, Contact, ImpactError, PlanarOutcome, PlanarScene, PlanarVelocity};
+use restitution::{BarrierOutcome, BarrierScene, Body, Contact, ImpactError, PlanarVelocity};
 
 /// The largest error allowed, in ulps of the scale defined above. Each output
 /// is a short chain of at most ~8 correctly rounded operations (fused where
@@ -25,8 +25,8 @@ pub struct Inputs {
 }
 
 impl Inputs {
-    pub fn scene(&self) -> Result<PlanarScene, ImpactError> {
-        PlanarScene::new(
+    pub fn scene(&self) -> Result<BarrierScene, ImpactError> {
+        BarrierScene::new(
             Body::new(self.m, self.inertia)?,
             Contact {
                 tangential_offset: self.dc,
@@ -127,7 +127,7 @@ fn max_abs(values: &[Q]) -> Q {
 }
 
 /// Compares one answer with the reference, output by output.
-pub fn compare(errors: &mut Errors, inp: &Inputs, fast: &PlanarOutcome, reference: &Outcome, kappa: Q) {
+pub fn compare(errors: &mut Errors, inp: &Inputs, fast: &BarrierOutcome, reference: &Outcome, kappa: Q) {
     let s = inp.exact();
     // k only sets a length scale; clamp k² into the f64 range to take its root.
     let k = exact::to_f64(&s.k2).clamp(f64::MIN_POSITIVE, f64::MAX).sqrt();

@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use restitution::{PlanarScene, PlanarVelocity};
+use restitution::{BarrierScene, PlanarVelocity};
 
 /// The tangential equation closing the system.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,7 +27,7 @@ pub enum TangentialClosure {
 /// (the second row becomes `[0, 1, −d_d] = V_ct` for a contact-velocity closure).
 /// `None` when the matrix is singular (`D = 0`).
 pub fn solve_momentum(
-    scene: &PlanarScene,
+    scene: &BarrierScene,
     restitution: f64,
     closure: TangentialClosure,
 ) -> Option<PlanarVelocity> {

@@ -4,15 +4,15 @@
 //! called per case: what the reference and paper tests measure.
 
 use restitution::impact::{Arithmetic, solve_in};
-use restitution::{Law, Outputs, PlanarImpact, PlanarOutcome, PlanarScene, Result};
+use restitution::{BarrierImpact, BarrierOutcome, BarrierScene, Law, Outputs, Result};
 
 /// The rigid-body impact of a validated scene under `law`.
-pub fn impact(scene: &PlanarScene, law: Law) -> PlanarImpact {
-    PlanarImpact::in_scene(scene, law)
+pub fn impact(scene: &BarrierScene, law: Law) -> BarrierImpact {
+    BarrierImpact::in_scene(scene, law)
 }
 
 /// `law` in `scene`, evaluated in plain f64.
-pub fn solve(scene: &PlanarScene, law: Law, outputs: Outputs) -> Result<PlanarOutcome> {
+pub fn solve(scene: &BarrierScene, law: Law, outputs: Outputs) -> Result<BarrierOutcome> {
     solve_in(&impact(scene, law), outputs, Arithmetic::Plain).0
 }
 
@@ -34,7 +34,12 @@ pub mod oblique {
         pub rebound_impulse_ratio: f64,
     }
 
-    pub fn solve(scene: &PlanarScene, e: f64, law: TangentialLaw, outputs: Outputs) -> Result<PlanarOutcome> {
+    pub fn solve(
+        scene: &BarrierScene,
+        e: f64,
+        law: TangentialLaw,
+        outputs: Outputs,
+    ) -> Result<BarrierOutcome> {
         let law = match law {
             TangentialLaw::ImpulseRatio(mu) => Law::ImpulseRatio {
                 restitution: e,
@@ -49,10 +54,10 @@ pub mod oblique {
     }
 
     pub fn solve_kinetic(
-        scene: &PlanarScene,
+        scene: &BarrierScene,
         k: KineticRestitution,
         outputs: Outputs,
-    ) -> Result<PlanarOutcome> {
+    ) -> Result<BarrierOutcome> {
         let law = Law::KineticRestitution {
             value: k.value,
             approach_impulse_ratio: k.approach_impulse_ratio,
@@ -65,7 +70,7 @@ pub mod oblique {
 pub mod tangential {
     use super::*;
 
-    pub fn solve(scene: &PlanarScene, e: f64, f: f64, et: f64, outputs: Outputs) -> Result<PlanarOutcome> {
+    pub fn solve(scene: &BarrierScene, e: f64, f: f64, et: f64, outputs: Outputs) -> Result<BarrierOutcome> {
         let law = Law::TangentialRestitution {
             restitution: e,
             friction: f,
@@ -77,7 +82,7 @@ pub mod tangential {
 
 pub mod normal {
     use super::*;
-    use restitution::{Contact, PlanarBody, PlanarVelocity};
+    use restitution::{BarrierBody, Contact, PlanarVelocity};
 
     /// A normal impact: a point mass when `inertia` is `None`.
     #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,15 +95,15 @@ pub mod normal {
     }
 
     impl NormalImpact {
-        pub fn impact(&self) -> PlanarImpact {
-            PlanarImpact {
+        pub fn impact(&self) -> BarrierImpact {
+            BarrierImpact {
                 body: match self.inertia {
-                    Some(inertia) => PlanarBody::Rigid {
+                    Some(inertia) => BarrierBody::Rigid {
                         mass: self.mass,
                         inertia,
                         contact: self.contact.unwrap_or_default(),
                     },
-                    None => PlanarBody::PointMass { mass: self.mass },
+                    None => BarrierBody::PointMass { mass: self.mass },
                 },
                 velocity: self.velocity,
                 law: Law::Frictionless {
@@ -108,7 +113,7 @@ pub mod normal {
         }
     }
 
-    pub fn solve(impact: &NormalImpact, outputs: Outputs) -> Result<PlanarOutcome> {
+    pub fn solve(impact: &NormalImpact, outputs: Outputs) -> Result<BarrierOutcome> {
         solve_in(&impact.impact(), outputs, Arithmetic::Plain).0
     }
 }

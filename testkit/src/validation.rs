@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 
 use restitution::sweep::{Axis, AxisValues, CaseSweep, Cell, Combine, Sweep};
 use restitution::{
-    Contact, Input, Law, Output, PlanarImpact, PlanarVelocity, Precision, RigidBody, SpatialContact,
+    BarrierImpact, Contact, Input, Law, Output, PlanarVelocity, Precision, RigidBody, SpatialContact,
     SpatialImpact,
 };
 
@@ -421,9 +421,9 @@ impl Dataset {
 
     /// The planar impact the model curves evaluate at initial velocities
     /// `velocity`: the sphere of unit mass, `I = 2/5 m R²`, `d_c = 0`, `d_d = R`.
-    pub fn planar(&self, velocity: PlanarVelocity, et: f64) -> PlanarImpact {
+    pub fn planar(&self, velocity: PlanarVelocity, et: f64) -> BarrierImpact {
         let mass = 1.0;
-        PlanarImpact::rigid(
+        BarrierImpact::rigid(
             mass,
             0.4 * mass * self.radius * self.radius,
             Contact::central(self.radius),

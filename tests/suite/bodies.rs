@@ -7,8 +7,8 @@ use crate::common::accuracy::random_inputs;
 use crate::common::reference::ulp_of;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
-    BodiesImpact, BodiesOutcome, ImpactError, Lamina, Law, Outputs, PlanarContact, PlanarImpact,
-    PlanarOutcome, Precision, solve,
+    BarrierImpact, BarrierOutcome, BodiesImpact, BodiesOutcome, ImpactError, Lamina, Law, Outputs,
+    PlanarContact, Precision, solve,
 };
 
 /// The four axis-aligned frames `(n̂, t̂ = ẑ × n̂)`, in which mapping a one-body
@@ -45,8 +45,8 @@ fn random_law(rng: &mut Rng) -> Law {
 }
 
 /// A one-body impact and the same impact in world axes with normal `scale · n̂`.
-fn mapped(one: &PlanarImpact, frame: [f64; 2], scale: f64) -> BodiesImpact {
-    let restitution::PlanarBody::Rigid {
+fn mapped(one: &BarrierImpact, frame: [f64; 2], scale: f64) -> BodiesImpact {
+    let restitution::BarrierBody::Rigid {
         mass,
         inertia,
         contact,
@@ -102,8 +102,8 @@ fn one_body_against_a_barrier_is_the_oblique_answer_bit_for_bit_in_exact_precisi
     for i in 0..3000 {
         let inp = random_inputs(&mut rng);
         let law = random_law(&mut rng);
-        let one = PlanarImpact {
-            body: restitution::PlanarBody::Rigid {
+        let one = BarrierImpact {
+            body: restitution::BarrierBody::Rigid {
                 mass: inp.m,
                 inertia: inp.inertia,
                 contact: restitution::Contact {
@@ -121,7 +121,7 @@ fn one_body_against_a_barrier_is_the_oblique_answer_bit_for_bit_in_exact_precisi
         let frame = FRAMES[i % 4];
         let scale = rng.pick(&[1.0, 2.5, 0.125, 3.0]);
         let world = mapped(&one, frame, scale);
-        let expected: Result<PlanarOutcome, ImpactError> = solve(&one, Outputs::ALL, Precision::Exact);
+        let expected: Result<BarrierOutcome, ImpactError> = solve(&one, Outputs::ALL, Precision::Exact);
         let got = solve(&world, Outputs::ALL, Precision::Exact);
         match (expected, got) {
             (Ok(e), Ok(g)) => {

@@ -15,7 +15,7 @@ use crate::common::Rng;
 use crate::common::sweep_rows::sweep_is_single_solves;
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::{
-    BodiesImpact, Case, Contact, Input, Lamina, Law, Outputs, PlanarContact, PlanarImpact, PlanarVelocity,
+    BarrierImpact, BodiesImpact, Case, Contact, Input, Lamina, Law, Outputs, PlanarContact, PlanarVelocity,
     RigidBody, SpatialContact, SpatialImpact, TorsionalImpact, Twist,
 };
 
@@ -44,7 +44,7 @@ fn decided_by<O>(r: &restitution::Result<O>, regime: impl Fn(&O) -> String) -> S
     r.as_ref().map(regime).unwrap_or_else(|e| e.slug().to_string())
 }
 
-impl Decided for PlanarImpact {
+impl Decided for BarrierImpact {
     fn decided(r: &restitution::Result<Self::Outcome>) -> String {
         decided_by(r, |o| o.regime.as_str().to_string())
     }
@@ -157,10 +157,10 @@ fn draw(rng: &mut Rng, lo: f64, hi: f64, dyadic: bool) -> f64 {
     if dyadic { (x * 8.0).round() / 8.0 } else { x }
 }
 
-fn lamina(rng: &mut Rng, dyadic: bool, law: Law) -> PlanarImpact {
+fn lamina(rng: &mut Rng, dyadic: bool, law: Law) -> BarrierImpact {
     let mass = draw(rng, 0.5, 4.0, dyadic).max(0.125);
     let k2 = draw(rng, 0.1, 2.0, dyadic).max(0.125);
-    PlanarImpact::rigid(
+    BarrierImpact::rigid(
         mass,
         mass * k2,
         Contact {

@@ -6,7 +6,7 @@ use crate::common::plain::tangential;
 use crate::common::server::spawn_app;
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
+use restitution::{BarrierScene, Body, Contact, Outputs, PlanarVelocity};
 use serde_json::{Value, json};
 
 /// Maw's disc over a range of v_t, with a small deterministic perturbation.
@@ -20,7 +20,7 @@ fn maw(vts: impl Iterator<Item = f64>) -> Vec<Value> {
     vts.enumerate()
         .map(|(i, vt)| {
             let i = i as u32;
-            let scene = PlanarScene::new(
+            let scene = BarrierScene::new(
                 Body::new(1.0, 0.00125).unwrap(),
                 Contact::central(0.05),
                 PlanarVelocity {

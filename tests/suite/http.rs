@@ -7,7 +7,7 @@ use crate::common::plain::tangential;
 use crate::common::plain::torsional::{self, TorsionalImpact};
 use crate::common::server::spawn_app;
 use restitution::http::{ServiceConfig, openapi_json};
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity};
+use restitution::{BarrierScene, Body, Contact, Outputs, PlanarVelocity};
 use serde_json::{Value, json};
 
 /// The Maw steel disc: 1 kg, radius 0.05 m, e = 0.93, f = 0.123.
@@ -21,8 +21,8 @@ fn maw_disc(vt: f64) -> Value {
     })
 }
 
-fn maw_scene(vt: f64) -> PlanarScene {
-    PlanarScene::new(
+fn maw_scene(vt: f64) -> BarrierScene {
+    BarrierScene::new(
         Body::new(1.0, 0.5 * 0.05 * 0.05).unwrap(),
         Contact::central(0.05),
         PlanarVelocity {
@@ -464,10 +464,10 @@ fn committed_openapi_document_is_up_to_date() {
 /// fast answer differs in the last place).
 #[tokio::test]
 async fn precision_is_chosen_echoed_and_exact_over_http() {
-    use restitution::{Law, PlanarImpact, Precision};
+    use restitution::{BarrierImpact, Law, Precision};
     let app = spawn_app(ServiceConfig::default()).await;
     let point = |vt: f64| {
-        PlanarImpact::rigid(
+        BarrierImpact::rigid(
             1.0,
             0.5 * 0.05 * 0.05,
             Contact::central(0.05),

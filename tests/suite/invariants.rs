@@ -9,9 +9,9 @@ use crate::common::linear::{TangentialClosure, solve_momentum};
 use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
 use crate::common::plain::tangential;
 use crate::common::plain::torsional::{self, TorsionalImpact};
-use restitution::{Body, Contact, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
+use restitution::{BarrierOutcome, BarrierScene, Body, Contact, Outputs, PlanarVelocity};
 
-fn scene_strategy() -> impl Strategy<Value = PlanarScene> {
+fn scene_strategy() -> impl Strategy<Value = BarrierScene> {
     (
         -3.0f64..3.0,    // log10 mass
         -2.0f64..1.0,    // log10 k
@@ -26,7 +26,7 @@ fn scene_strategy() -> impl Strategy<Value = PlanarScene> {
             let m = 10f64.powf(lm);
             let k = 10f64.powf(lk);
             let dc = if central { 0.0 } else { dc };
-            PlanarScene::new(
+            BarrierScene::new(
                 Body::new(m, m * k * k).ok()?,
                 Contact {
                     tangential_offset: dc,
@@ -45,7 +45,7 @@ fn scene_strategy() -> impl Strategy<Value = PlanarScene> {
 /// Angular momentum about C is conserved (Eq 3), up to rounding of its terms:
 /// those of both sides (the initial ones may cancel to far less than the
 /// final ones, and each side is rounded relative to its own terms).
-fn check_momentum_about_contact(scene: &PlanarScene, out: &PlanarOutcome) {
+fn check_momentum_about_contact(scene: &BarrierScene, out: &BarrierOutcome) {
     let m = scene.body().mass();
     let i = scene.body().inertia();
     let c = scene.contact();
@@ -70,7 +70,7 @@ fn check_momentum_about_contact(scene: &PlanarScene, out: &PlanarOutcome) {
     );
 }
 
-fn check_energy(out: &PlanarOutcome) {
+fn check_energy(out: &BarrierOutcome) {
     let energy = out.energy.expect("energy");
     assert!(energy.loss >= 0.0, "energy created: {energy:?}");
     assert!(
@@ -82,7 +82,7 @@ fn check_energy(out: &PlanarOutcome) {
     assert!((direct - energy.loss).abs() <= 1e-12 * energy.initial);
 }
 
-fn check_linear(scene: &PlanarScene, out: &PlanarOutcome, closure: TangentialClosure) {
+fn check_linear(scene: &BarrierScene, out: &BarrierOutcome, closure: TangentialClosure) {
     let general = solve_momentum(scene, out.restitution, closure).expect("regular system");
     let scale = |a: f64, b: f64| 1e-9 * (1.0 + a.abs().max(b.abs()));
     let f = out.final_velocity;
@@ -199,7 +199,7 @@ proptest! {
 /// above: Eq 3 holds to the rounding of those terms.
 #[test]
 fn momentum_about_contact_when_the_initial_moment_cancels() {
-    let scene = PlanarScene::new(
+    let scene = BarrierScene::new(
         Body::new(1.0, 2.431824857967856).unwrap(),
         Contact {
             tangential_offset: 0.0,

@@ -3,12 +3,12 @@
 use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
 use crate::common::plain::tangential;
 use crate::common::plain::torsional::{self, TorsionalImpact, TorsionalRegime};
-use restitution::{Body, Contact, Outputs, PlanarScene, PlanarVelocity, Regime};
+use restitution::{BarrierScene, Body, Contact, Outputs, PlanarVelocity, Regime};
 
 /// A uniform disc of radius ρ: k² = ρ²/2, so λ = ρ²/k² = 2.
-fn disc(rho: f64, vn: f64, vt: f64, w: f64) -> PlanarScene {
+fn disc(rho: f64, vn: f64, vt: f64, w: f64) -> BarrierScene {
     let m = 1.0;
-    PlanarScene::new(
+    BarrierScene::new(
         Body::new(m, 0.5 * m * rho * rho).unwrap(),
         Contact::central(rho),
         PlanarVelocity {
@@ -155,7 +155,7 @@ fn eq_27_energy_loss_without_initial_spin() {
 #[test]
 fn eq_11_kinetic_and_kinematic_restitution() {
     let scene_with = |dc: f64, dd: f64| {
-        PlanarScene::new(
+        BarrierScene::new(
             Body::new(2.0, 0.3).unwrap(),
             Contact {
                 tangential_offset: dc,
@@ -169,7 +169,7 @@ fn eq_11_kinetic_and_kinematic_restitution() {
         )
         .unwrap()
     };
-    let solve = |scene: &PlanarScene, mu_a: f64, mu_r: f64| {
+    let solve = |scene: &BarrierScene, mu_a: f64, mu_r: f64| {
         let k = KineticRestitution {
             value: 0.6,
             approach_impulse_ratio: mu_a,

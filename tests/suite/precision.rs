@@ -24,7 +24,7 @@ use crate::common::reference::{self as reference, Outcome, Q, Refusal, q};
 use num_traits::{Signed, Zero};
 use restitution::impact::{Arithmetic, Stage, solve_in};
 use restitution::{
-    Contact, ImpactError, Output, Outputs, PlanarImpact, PlanarOutcome, PlanarVelocity, Precision, Regime,
+    BarrierImpact, BarrierOutcome, Contact, ImpactError, Output, Outputs, PlanarVelocity, Precision, Regime,
     TorsionalImpact, solve,
 };
 
@@ -46,7 +46,7 @@ struct Case {
 }
 
 impl Case {
-    fn impact(&self) -> PlanarImpact {
+    fn impact(&self) -> BarrierImpact {
         let i = &self.inp;
         let restitution = self.e;
         let law = match self.law {
@@ -72,7 +72,7 @@ impl Case {
                 }
             }
         };
-        PlanarImpact::rigid(
+        BarrierImpact::rigid(
             i.m,
             i.inertia,
             Contact {
@@ -145,7 +145,7 @@ fn overflows(exact: &Q) -> bool {
 }
 
 /// Every planar output of an answer with its reference value.
-fn planar_outputs(o: &PlanarOutcome, r: &Outcome, inp: &Inputs) -> Vec<(&'static str, f64, Q)> {
+fn planar_outputs(o: &BarrierOutcome, r: &Outcome, inp: &Inputs) -> Vec<(&'static str, f64, Q)> {
     let s = inp.exact();
     let energy = o.energy.expect("energies requested");
     let mut list = vec![
@@ -700,7 +700,7 @@ fn exact_point_mass_is_correctly_rounded_over_the_whole_range() {
             rng.log_uniform(-300.0, 300.0) * rng.pick(&[-1.0, 1.0]),
         );
         let e = random_e(&mut rng);
-        let point = PlanarImpact::point_mass(m, vn, vt, e);
+        let point = BarrierImpact::point_mass(m, vn, vt, e);
         let (qm, qvn, qvt, qe) = (q(m), q(vn), q(vt), q(e));
         let half = q(0.5);
         let initial = &half * &qm * (&qvn * &qvn + &qvt * &qvt);

@@ -12,9 +12,9 @@
 use restitution::impact::{Arithmetic, solve_in};
 use restitution::quantity::Value;
 use restitution::{
-    BodiesImpact, Case, Contact, ImpactError, Lamina, Law, Outputs, PROMISED_RELATIVE_ERROR, PlanarBody,
-    PlanarContact, PlanarImpact, PlanarVelocity, RigidBody, SpatialContact, SpatialImpact, TorsionalImpact,
-    Twist,
+    BarrierBody, BarrierImpact, BodiesImpact, Case, Contact, ImpactError, Lamina, Law, Outputs,
+    PROMISED_RELATIVE_ERROR, PlanarContact, PlanarVelocity, RigidBody, SpatialContact, SpatialImpact,
+    TorsionalImpact, Twist,
 };
 
 use crate::common::Rng;
@@ -136,7 +136,7 @@ pub(crate) fn two_phase_law(rng: &mut Rng) -> Law {
 
 /// One lamina on a barrier, slender (`k/d` down to 10⁻⁷) or with a
 /// prescribed ratio just inside `D(μ) = k² + d_c (d_c − μ d_d) > 0`.
-pub(crate) fn lamina_on_barrier(rng: &mut Rng) -> PlanarImpact {
+pub(crate) fn lamina_on_barrier(rng: &mut Rng) -> BarrierImpact {
     let (mass, length, speed) = (rng.log_uniform(-3.0, 3.0), rng.log_uniform(-3.0, 3.0), far(rng));
     let dc = length * rng.range(0.2, 2.0) * rng.sign();
     let dd = length * rng.range(0.2, 2.0);
@@ -157,8 +157,8 @@ pub(crate) fn lamina_on_barrier(rng: &mut Rng) -> PlanarImpact {
         random_law(rng)
     };
     let w = speed / length * rng.range(-2.0, 2.0);
-    PlanarImpact {
-        body: PlanarBody::Rigid {
+    BarrierImpact {
+        body: BarrierBody::Rigid {
             mass,
             inertia: mass * k * k,
             contact: Contact {
@@ -365,7 +365,7 @@ fn fast_keeps_its_promise_on_slender_bodies_in_space() {
 fn fast_keeps_its_promise_on_two_phase_laws_in_the_plane() {
     // The two-phase laws on the same adversarial scenes, one lamina and two
     // (the Coulomb approach sticking or sliding): the promise only.
-    let lamina = |rng: &mut Rng| PlanarImpact {
+    let lamina = |rng: &mut Rng| BarrierImpact {
         law: two_phase_law(rng),
         ..lamina_on_barrier(rng)
     };

@@ -16,7 +16,7 @@ use num_traits::Signed;
 
 use crate::common::plain::oblique::{self, KineticRestitution, TangentialLaw};
 use crate::common::plain::tangential;
-use restitution::{Contact, ImpactError, Outputs, PlanarOutcome, PlanarScene, PlanarVelocity};
+use restitution::{BarrierOutcome, BarrierScene, Contact, ImpactError, Outputs, PlanarVelocity};
 
 /// Runs one case over `n` random scenes; `law` gives the fast and exact answers.
 fn run_case(
@@ -26,8 +26,8 @@ fn run_case(
     mut law: impl FnMut(
         &mut Rng,
         &Inputs,
-        &PlanarScene,
-    ) -> (Result<PlanarOutcome, ImpactError>, Result<Outcome, Refusal>),
+        &BarrierScene,
+    ) -> (Result<BarrierOutcome, ImpactError>, Result<Outcome, Refusal>),
 ) {
     let mut rng = Rng::new(seed);
     let mut errors = Errors::default();

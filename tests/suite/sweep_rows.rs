@@ -9,18 +9,18 @@ use crate::common::Rng;
 use crate::common::sweep_rows::sweep_is_single_solves;
 use crate::promise::{lamina_on_barrier, slender_in_space, slender_pair, torsional_edges, two_phase_law};
 use restitution::{
-    BodiesImpact, Case, Contact, Input, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve,
+    BarrierImpact, BodiesImpact, Case, Contact, Input, Law, Outputs, PlanarVelocity, Precision, solve,
     solve_many,
 };
 
-fn lamina(rng: &mut Rng, n: usize) -> PlanarImpact {
+fn lamina(rng: &mut Rng, n: usize) -> BarrierImpact {
     let dyadic = n % 2 == 0;
     let mut draw = |lo: f64, hi: f64| {
         let x = rng.range(lo, hi);
         if dyadic { (x * 8.0).round() / 8.0 } else { x }
     };
     let mass = draw(0.125, 4.0).max(0.125);
-    PlanarImpact::rigid(
+    BarrierImpact::rigid(
         mass,
         mass * draw(0.01, 2.0).max(0.125),
         Contact {
@@ -120,11 +120,11 @@ fn many_are_single_solves<C: Case>(impacts: &[C]) -> usize {
 #[test]
 fn solve_many_answers_each_impact_as_solve_does() {
     let mut rng = Rng::new(0xba7c);
-    let draw = |rng: &mut Rng, make: &dyn Fn(&mut Rng) -> PlanarImpact| {
+    let draw = |rng: &mut Rng, make: &dyn Fn(&mut Rng) -> BarrierImpact| {
         (0..300).map(|_| make(rng)).collect::<Vec<_>>()
     };
     let laminae = draw(&mut rng, &lamina_on_barrier);
-    let two_phase: Vec<PlanarImpact> = draw(&mut rng, &|rng| PlanarImpact {
+    let two_phase: Vec<BarrierImpact> = draw(&mut rng, &|rng| BarrierImpact {
         law: two_phase_law(rng),
         ..lamina_on_barrier(rng)
     });
@@ -139,5 +139,37 @@ fn solve_many_answers_each_impact_as_solve_does() {
         many_are_single_solves(&torsional),
     ];
     assert!(answered.iter().all(|&n| n > 100), "answered {answered:?}");
-    assert!(solve_many::<PlanarImpact>(&[], Outputs::ALL, Precision::Fast).is_empty());
+    assert!(solve_many::<BarrierImpact>(&[], Outputs::ALL, Precision::Fast).is_empty());
+}
+
+/// The barrier case's earlier names (`PlanarImpact`, `PlanarBody`,
+/// `PlanarOutcome`, `PlanarScene`) still name its types, at the crate root
+/// and in their modules, for callers written before the rename.
+#[test]
+#[allow(deprecated)]
+fn the_barrier_case_keeps_its_earlier_names_for_callers() {
+    use restitution::impact::PlanarImpact as ModulePath;
+    use restitution::{PlanarBody, PlanarImpact, PlanarOutcome, PlanarScene};
+    let old = PlanarImpact {
+        body: PlanarBody::Rigid {
+            mass: 1.0,
+            inertia: 0.00125,
+            contact: Contact::central(0.05),
+        },
+        velocity: PlanarVelocity {
+            normal: -1.0,
+            tangential: 0.4,
+            angular: 0.0,
+        },
+        law: Law::Friction {
+            restitution: 0.93,
+            friction: 0.123,
+        },
+    };
+    let new: BarrierImpact = old;
+    let via_module: ModulePath = new;
+    let scene: PlanarScene = via_module.scene().expect("a scene");
+    assert_eq!(BarrierImpact::in_scene(&scene, old.law), old);
+    let outcome: PlanarOutcome = solve(&old, Outputs::ALL, Precision::Exact).expect("an answer");
+    assert_eq!(outcome, solve(&new, Outputs::ALL, Precision::Exact).unwrap());
 }

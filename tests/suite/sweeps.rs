@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use crate::common::server::{TestApp, spawn_app};
 use reqwest::StatusCode;
 use restitution::http::ServiceConfig;
-use restitution::{Contact, Law, Outputs, PlanarImpact, PlanarVelocity, Precision, solve};
+use restitution::{BarrierImpact, Contact, Law, Outputs, PlanarVelocity, Precision, solve};
 use serde_json::{Value, json};
 
 fn maw_base() -> Value {
@@ -19,8 +19,8 @@ fn maw_base() -> Value {
     })
 }
 
-fn maw_point(vt: f64, f: f64) -> PlanarImpact {
-    PlanarImpact::rigid(
+fn maw_point(vt: f64, f: f64) -> BarrierImpact {
+    BarrierImpact::rigid(
         1.0,
         0.00125,
         Contact::central(0.05),

@@ -19,7 +19,7 @@
 
 use crate::common::rotation::Rotation;
 use crate::common::validation::{self, Dataset, Deviation, Point, Quantity};
-use restitution::{Outputs, PlanarOutcome, PlanarVelocity, Precision, SpatialOutcome, solve};
+use restitution::{BarrierOutcome, Outputs, PlanarVelocity, Precision, SpatialOutcome, solve};
 
 fn digitization_scatter() -> f64 {
     validation::digitization_scatter().expect("Test 6 and Test 8 data")
@@ -282,7 +282,7 @@ struct Scales {
 /// spatial, scale) in the planar frame: the spatial world vectors are turned
 /// back by `rotation` first.
 fn shared_outputs(
-    p: &PlanarOutcome,
+    p: &BarrierOutcome,
     s: &SpatialOutcome,
     rotation: Option<&Rotation>,
     k: Scales,

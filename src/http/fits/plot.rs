@@ -12,7 +12,7 @@ use crate::http::accept::choose;
 use utoipa::IntoResponses;
 
 use crate::http::problem::{ApiError, Problem};
-use crate::impact::{Law, PlanarImpact, Precision, TorsionalImpact, solve};
+use crate::impact::{BarrierImpact, Law, Precision, TorsionalImpact, solve};
 use crate::outcome::Outputs;
 use crate::plot::{Curve, Figure, LegendEntry, Line, Marker, Markers, PALETTE, Shape};
 use crate::scene::PlanarVelocity;
@@ -88,7 +88,7 @@ pub fn tangential(observations: &[Observation], fit: &TangentialFit) -> String {
                     angular: 0.0,
                 };
                 let impact =
-                    PlanarImpact::rigid(o0.body.mass(), o0.body.inertia(), o0.contact, velocity, law);
+                    BarrierImpact::rigid(o0.body.mass(), o0.body.inertia(), o0.contact, velocity, law);
                 solve(&impact, Outputs::MINIMAL, Precision::Fast)
                     .ok()
                     .map(|o| o.contact_velocity.r#final.tangential)

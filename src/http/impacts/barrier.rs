@@ -11,7 +11,7 @@ use super::respond;
 use crate::error::{ImpactError, Input};
 use crate::http::dto::{ContactDto, NormalBodyDto, PlanarResponse, PrecisionDto, RigidBodyDto, VelocityDto};
 use crate::http::problem::ApiError;
-use crate::impact::{Law, PlanarBody, PlanarImpact};
+use crate::impact::{BarrierBody, BarrierImpact, Law};
 use crate::scene::PlanarVelocity;
 
 /// A normal (frictionless) impact: a point mass when `body.inertia` is absent.
@@ -99,13 +99,13 @@ pub struct TangentialRequest {
     pub precision: PrecisionDto,
 }
 
-impl TryFrom<&NormalRequest> for PlanarImpact {
+impl TryFrom<&NormalRequest> for BarrierImpact {
     type Error = ApiError;
 
     /// A point mass when the body has no inertia (then no contact may be given).
     fn try_from(req: &NormalRequest) -> Result<Self, ApiError> {
         let body = match (req.body.inertia, req.contact) {
-            (Some(inertia), contact) => PlanarBody::Rigid {
+            (Some(inertia), contact) => BarrierBody::Rigid {
                 mass: req.body.mass,
                 inertia,
                 contact: contact.map(Into::into).unwrap_or_default(),
@@ -116,9 +116,9 @@ impl TryFrom<&NormalRequest> for PlanarImpact {
                 }
                 .into());
             }
-            (None, None) => PlanarBody::PointMass { mass: req.body.mass },
+            (None, None) => BarrierBody::PointMass { mass: req.body.mass },
         };
-        Ok(PlanarImpact {
+        Ok(BarrierImpact {
             body,
             velocity: req.velocity.into(),
             law: Law::Frictionless {
@@ -128,7 +128,7 @@ impl TryFrom<&NormalRequest> for PlanarImpact {
     }
 }
 
-impl TryFrom<&ObliqueRequest> for PlanarImpact {
+impl TryFrom<&ObliqueRequest> for BarrierImpact {
     type Error = ApiError;
 
     /// Exactly one law, read by the one wire parser: `restitution` with a
@@ -145,7 +145,7 @@ impl TryFrom<&ObliqueRequest> for PlanarImpact {
     }
 }
 
-impl From<&TangentialRequest> for PlanarImpact {
+impl From<&TangentialRequest> for BarrierImpact {
     fn from(req: &TangentialRequest) -> Self {
         rigid(
             req.body,
@@ -160,8 +160,8 @@ impl From<&TangentialRequest> for PlanarImpact {
     }
 }
 
-fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: Law) -> PlanarImpact {
-    PlanarImpact::rigid(
+fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: Law) -> BarrierImpact {
+    BarrierImpact::rigid(
         body.mass,
         body.inertia,
         contact.into(),
@@ -173,7 +173,7 @@ fn rigid(body: RigidBodyDto, contact: ContactDto, velocity: VelocityDto, law: La
 /// The response to a normal request.
 pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
     respond(
-        PlanarImpact::try_from(&req),
+        BarrierImpact::try_from(&req),
         req.precision,
         PlanarResponse::from_outcome,
     )
@@ -182,7 +182,7 @@ pub fn respond_normal(req: NormalRequest) -> Result<PlanarResponse, ApiError> {
 /// The response to an oblique request.
 pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> {
     respond(
-        PlanarImpact::try_from(&req),
+        BarrierImpact::try_from(&req),
         req.precision,
         PlanarResponse::from_outcome,
     )
@@ -191,7 +191,7 @@ pub fn respond_oblique(req: ObliqueRequest) -> Result<PlanarResponse, ApiError> 
 /// The response to a tangential-restitution request.
 pub fn respond_tangential(req: TangentialRequest) -> Result<PlanarResponse, ApiError> {
     respond(
-        Ok(PlanarImpact::from(&req)),
+        Ok(BarrierImpact::from(&req)),
         req.precision,
         PlanarResponse::from_outcome,
     )
@@ -237,11 +237,11 @@ mod tests {
             json!({"body": body(), "contact": contact(), "velocity": velocity(), "restitution": 0.93}),
             json!({"body": {"mass": 1.25}, "velocity": {"normal": -1.1, "tangential": 0.37}, "restitution": 0.93}),
         ];
-        let mut impacts: Vec<(Json, PlanarImpact)> = requests
+        let mut impacts: Vec<(Json, BarrierImpact)> = requests
             .into_iter()
             .map(|r| {
                 let req: NormalRequest = serde_json::from_value(r.clone()).unwrap();
-                (r, PlanarImpact::try_from(&req).unwrap())
+                (r, BarrierImpact::try_from(&req).unwrap())
             })
             .collect();
         for law in [
@@ -254,12 +254,12 @@ mod tests {
                 &law,
             );
             let req: ObliqueRequest = serde_json::from_value(r.clone()).unwrap();
-            impacts.push((r, PlanarImpact::try_from(&req).unwrap()));
+            impacts.push((r, BarrierImpact::try_from(&req).unwrap()));
         }
         let r = json!({"body": body(), "contact": contact(), "velocity": velocity(),
                        "restitution": 0.93, "friction": 0.123, "tangential_restitution": 0.34});
         let req: TangentialRequest = serde_json::from_value(r.clone()).unwrap();
-        impacts.push((r, PlanarImpact::from(&req)));
+        impacts.push((r, BarrierImpact::from(&req)));
         for (request, impact) in &impacts {
             paths_resolve(request, impact, PlanarResponse::from_outcome);
         }

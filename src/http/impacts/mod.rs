@@ -51,9 +51,9 @@ macro_rules! impact_cases {
     ($($consumer:ident)::+ [$($extra:tt)*]) => {
         $($consumer)::+! {
             [$($extra)*]
-            Normal => ("normal", $crate::http::impacts::NormalRequest, $crate::impact::PlanarImpact, |base| $crate::impact::PlanarImpact::try_from(base)),
-            Oblique => ("oblique", $crate::http::impacts::ObliqueRequest, $crate::impact::PlanarImpact, |base| $crate::impact::PlanarImpact::try_from(base)),
-            Tangential => ("tangential", $crate::http::impacts::TangentialRequest, $crate::impact::PlanarImpact, |base| Ok($crate::impact::PlanarImpact::from(base))),
+            Normal => ("normal", $crate::http::impacts::NormalRequest, $crate::impact::BarrierImpact, |base| $crate::impact::BarrierImpact::try_from(base)),
+            Oblique => ("oblique", $crate::http::impacts::ObliqueRequest, $crate::impact::BarrierImpact, |base| $crate::impact::BarrierImpact::try_from(base)),
+            Tangential => ("tangential", $crate::http::impacts::TangentialRequest, $crate::impact::BarrierImpact, |base| Ok($crate::impact::BarrierImpact::from(base))),
             Torsional => ("torsional", $crate::http::impacts::TorsionalRequest, $crate::impact::TorsionalImpact, |base| Ok($crate::impact::TorsionalImpact::from(base))),
             Planar => ("planar", $crate::http::impacts::PlanarContactRequest, $crate::impact::BodiesImpact, |base| $crate::impact::BodiesImpact::try_from(base)),
             Spatial => ("spatial", $crate::http::impacts::SpatialContactRequest, $crate::impact::SpatialImpact, |base| $crate::impact::SpatialImpact::try_from(base)),
