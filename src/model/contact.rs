@@ -146,7 +146,7 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
                 out,
             )
         }
-        Some(et) => bilinear(sc, &e, law.cap, et, &law, outputs, out),
+        Some(et) => bilinear(sc, &e, et, &law, outputs, out),
     }
 }
 
@@ -266,20 +266,20 @@ fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Opti
 }
 
 /// The bilinear law (section 3; Coulomb friction for `e_t = 0`): the
-/// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f`
-/// (the law's first regime), else sliding through separation with `|μ| = f`
-/// opposing the initial slip.
+/// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f` (`f`
+/// the law's cap; the law's first regime), else sliding through separation
+/// with `|μ| = f` opposing the initial slip.
 #[inline(always)]
 fn bilinear<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
-    f: f64,
     et: f64,
     law: &Reading,
     outputs: Outputs,
     out: &mut S::Outcome,
 ) -> Exact<N, ()> {
     let cs = sc.reduced();
+    let f = law.cap;
     let (kept, sliding) = law.pointers;
     let qn = normal_target(sc, e);
     let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
@@ -426,8 +426,9 @@ fn coulomb_approach<N: Field, S: ContactSpace<N>>(
     let cs = sc.reduced();
     // The impulse that ends the approach with U = 0 (q_n = s, q_t = u_t).
     let (sdn, sdt) = scaled_impulses(sc, &cs.s, &cs.ut);
-    let sticks = sign(&sdn)? != Ordering::Equal
-        && sign(&N::of(f_a).mul(&abs(&sdn)?).sub(&abs(&sdt)?))? != Ordering::Less;
+    let normal = sign(&sdn)?;
+    let sticks =
+        normal != Ordering::Equal && sign(&N::of(f_a).mul(&abs(&sdn)?).sub(&abs(&sdt)?))? != Ordering::Less;
     // The tangential impulse's sign along t̂: the sticking impulse's when the
     // approach sticks or nothing slips, else against the slip.
     let slip = sign(&cs.ut)?;
@@ -448,7 +449,7 @@ fn coulomb_approach<N: Field, S: ContactSpace<N>>(
     }
     let mu_r = along.map_or(0.0, |a| a * mu_r + 0.0);
     if sticks {
-        if sign(&sdn)? != Ordering::Greater {
+        if normal != Ordering::Greater {
             return Err(ImpactError::NoImpulse {
                 input: Input::ApproachFriction,
             }
