@@ -17,7 +17,8 @@
 //! baseline, where every `mul_add` is a call into the software fma. So the
 //! model's functions are `#[inline(always)]` (a plain `#[inline]` is a hint
 //! that large functions and closures called twice do not get), closures
-//! that would be called more than once are functions, and where the model
+//! that would be called more than once are functions or are marked
+//! `#[inline(always)]` too, and where the model
 //! calls itself (a spatial branch that needs another branch's solution) the
 //! cycle passes through `run` again, whose copy is then the one out-of-line
 //! function. The stages of the exact evaluation pass through `run` too. A

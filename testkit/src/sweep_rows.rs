@@ -13,13 +13,20 @@ fn bits(cell: &Cell) -> String {
     }
 }
 
-/// Sweeps `input` of `base` over `values` in `fast` precision with every
-/// output, and asserts each row is the single `fast` solve of its point (the
-/// same cells, or the same refusal). Returns the number of rows answered.
+/// Sweeps `input` of `base` over `values` with every output, in `fast` and
+/// in `exact` precision, and asserts each row is the single solve of its
+/// point in the same precision (the same cells, or the same refusal).
+/// Returns the number of rows answered in `fast`.
 pub fn sweep_is_single_solves<C: Case>(base: &C, input: Input, values: &[f64]) -> usize {
+    let answered = rows_are_single_solves(base, input, values, Precision::Fast);
+    rows_are_single_solves(base, input, values, Precision::Exact);
+    answered
+}
+
+/// [`sweep_is_single_solves`] in one precision.
+fn rows_are_single_solves<C: Case>(base: &C, input: Input, values: &[f64], precision: Precision) -> usize {
     let columns = C::OUTPUTS.to_vec();
-    let case =
-        CaseSweep::new(base, &[input], columns.clone(), Precision::Fast).expect("an input the law reads");
+    let case = CaseSweep::new(base, &[input], columns.clone(), precision).expect("an input the law reads");
     let axes = vec![Axis {
         param: input,
         values: AxisValues::List(values.to_vec()),
@@ -32,7 +39,7 @@ pub fn sweep_is_single_solves<C: Case>(base: &C, input: Input, values: &[f64]) -
         let x = values[row.index as usize];
         let mut impact = *base;
         *impact.input_mut(input).expect("read") = x;
-        let single = solve(&impact, Outputs::ALL, Precision::Fast);
+        let single = solve(&impact, Outputs::ALL, precision);
         match (row.outcome, single) {
             (Ok(cells), Ok(outcome)) => {
                 answered += 1;
@@ -43,7 +50,7 @@ pub fn sweep_is_single_solves<C: Case>(base: &C, input: Input, values: &[f64]) -
                     assert_eq!(
                         bits(cell),
                         bits(&C::output(&outcome, column).expect("an output of the case")),
-                        "{column:?} at {input:?} = {x:e} (row {}): {impact:?}",
+                        "{precision:?}: {column:?} at {input:?} = {x:e} (row {}): {impact:?}",
                         row.index
                     );
                 }
@@ -52,9 +59,11 @@ pub fn sweep_is_single_solves<C: Case>(base: &C, input: Input, values: &[f64]) -
             (Err(e), Err(single)) => assert_eq!(
                 format!("{e:?}"),
                 format!("{single:?}"),
-                "{input:?} = {x:e}: {impact:?}"
+                "{precision:?}: {input:?} = {x:e}: {impact:?}"
             ),
-            (sweep, single) => panic!("{input:?} = {x:e}: sweep {sweep:?}, single {single:?}: {impact:?}"),
+            (sweep, single) => {
+                panic!("{precision:?}: {input:?} = {x:e}: sweep {sweep:?}, single {single:?}: {impact:?}")
+            }
         }
     });
     assert_eq!(rows, values.len());

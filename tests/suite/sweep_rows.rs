@@ -1,9 +1,9 @@
-//! A sweep's rows are the single solves of its points, bit for bit: over
-//! random Coulomb scenes swept through both regimes, zero slip, central
-//! contacts, G on the normal, and values that are outside the fast range or
-//! invalid. (The adversarial sets at every switch are swept too, in
-//! `tests/decisions.rs`.) So are the answers of `solve_many`, on the
-//! adversarial scenes of every case.
+//! A sweep's rows are the single solves of its points, bit for bit, in
+//! `fast` and in `exact`: over random Coulomb scenes swept through both
+//! regimes, zero slip, central contacts, G on the normal, and values that
+//! are outside the fast range or invalid. (The adversarial sets at every
+//! switch of every case are swept too, in `tests/decisions.rs`.) So are the
+//! answers of `solve_many`, on the adversarial scenes of every case.
 
 use crate::common::Rng;
 use crate::common::sweep_rows::sweep_is_single_solves;

@@ -34,7 +34,11 @@ pub(super) fn kinetic<N: Radical>(
     let refuse = |error: ImpactError| -> Exact<N, ()> { Err(Fail::Refused(error)) };
     let zero = N::of(0.0);
     // The approach's sticking impulse (W P = −u: it ends with U = 0).
-    let stick = map(&sym_mul(&sc.g.adj, &sc.u), |x| x.div(&sc.g.det).neg());
+    let stick = map(
+        &sym_mul(&sc.g.adj, &sc.u),
+        #[inline(always)]
+        |x| x.div(&sc.g.det).neg(),
+    );
     let stick = sc.solution(stick, zero.clone());
     let (pointer, mu_a, kept) = match phases.approach {
         Approach::Ratio(mu) => (Input::ApproachImpulseRatio, mu, false),
@@ -114,7 +118,12 @@ pub(super) fn kinetic<N: Radical>(
     let pt = match &along {
         Some(a) if rebound && mu_r > 0.0 => {
             let k = N::of(mu_r).mul(&beta);
-            zip(&approach_t, a, |x, y| k.mul_add(y, x))
+            zip(
+                &approach_t,
+                a,
+                #[inline(always)]
+                |x, y| k.mul_add(y, x),
+            )
         }
         _ => approach_t,
     };

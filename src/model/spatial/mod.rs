@@ -137,8 +137,16 @@ pub(crate) fn spatial<N: Radical>(
         Tangential::Kept => {
             let et = N::of(sc.law.kept.unwrap_or(0.0));
             (
-                map(&sc.ut, |x| et.mul(x).neg()),
-                map(&sc.ut, |x| one.sub(&et).mul(x)),
+                map(
+                    &sc.ut,
+                    #[inline(always)]
+                    |x| et.mul(x).neg(),
+                ),
+                map(
+                    &sc.ut,
+                    #[inline(always)]
+                    |x| one.sub(&et).mul(x),
+                ),
             )
         }
         Tangential::Sliding => sc.slip_after(&du),
@@ -206,6 +214,12 @@ struct Written<N> {
     torsional_regime: Option<TorsionalRegime>,
 }
 
+/// `x` on body A (`index` 0), `−x` on body B, which the impulse acts on reversed.
+#[inline(always)]
+fn on_body<N: Field>(index: usize, x: N) -> N {
+    if index == 0 { x } else { x.neg() }
+}
+
 /// Writes an answer's outputs to `outcome`, whole or not at all.
 #[inline(always)]
 fn write<N: Radical>(
@@ -229,10 +243,17 @@ fn write<N: Radical>(
     let p2 = norm2(&s.p);
     for (index, (b, motion)) in sc.g.bodies.iter().zip(&sc.motion).enumerate() {
         let names = &SPATIAL_BODY_OUTPUTS[index];
-        let signed = |x: N| if index == 0 { x } else { x.neg() };
-        let dv = map(&s.p, |x| signed(x.mul(&b.inv_m)));
+        let dv = map(
+            &s.p,
+            #[inline(always)]
+            |x| on_body(index, x.mul(&b.inv_m)),
+        );
         let moment = axpy(&s.kappa, &sc.g.n, &cross(&b.r, &s.p));
-        let dw = map(&sym_mul(&b.inv_i, &moment), |x| signed(x.clone()));
+        let dw = map(
+            &sym_mul(&b.inv_i, &moment),
+            #[inline(always)]
+            |x| on_body(index, x.clone()),
+        );
         bodies[index] = SpatialBodyOutcome {
             velocity: Scene::<N>::vector_out(three(names, 0), &add(&motion.v, &dv))?,
             angular_velocity: Scene::<N>::vector_out(three(names, 3), &add(&motion.w, &dw))?,

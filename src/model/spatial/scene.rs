@@ -279,7 +279,11 @@ impl<'a, N: Radical> Scene<'a, N> {
                 let target = axpy(
                     &self.q.div(&self.g.nu),
                     &self.g.n,
-                    &map(&self.ut, |x| N::of(1.0).add(&N::of(et)).mul(x).neg()),
+                    &map(
+                        &self.ut,
+                        #[inline(always)]
+                        |x| N::of(1.0).add(&N::of(et)).mul(x).neg(),
+                    ),
                 );
                 let a = sym_mul(&self.g.adj, &target);
                 match z {
@@ -302,9 +306,12 @@ impl<'a, N: Radical> Scene<'a, N> {
                         }
                         let na = dot(&self.g.n, &a);
                         let scale = self.g.det.mul(&den);
-                        let p = zip(&a, &b, |ai, bi| {
-                            ai.mul(&den).sub(&c1.mul(bi).mul(&na)).div(&scale)
-                        });
+                        let p = zip(
+                            &a,
+                            &b,
+                            #[inline(always)]
+                            |ai, bi| ai.mul(&den).sub(&c1.mul(bi).mul(&na)).div(&scale),
+                        );
                         let kappa = c1.mul_add(&dot(&p, &self.g.n), &c0);
                         Ok(Some(self.solution(p, kappa)))
                     }
@@ -515,7 +522,12 @@ impl<'a, N: Radical> Scene<'a, N> {
         let dut = tangential_part(du, &dun, &self.g.n, self.g.axis);
         (
             add(&self.ut, &dut),
-            zip(&self.ut, &dut, |x, y| N::of(2.0).mul_add(x, y)),
+            zip(
+                &self.ut,
+                &dut,
+                #[inline(always)]
+                |x, y| N::of(2.0).mul_add(x, y),
+            ),
         )
     }
 
