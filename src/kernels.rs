@@ -18,10 +18,10 @@
 //! model's functions are `#[inline(always)]` (a plain `#[inline]` is a hint
 //! that large functions and closures called twice do not get), closures
 //! that would be called more than once are functions or are marked
-//! `#[inline(always)]` too, and where the model
-//! calls itself (a spatial branch that needs another branch's solution) the
-//! cycle passes through `run` again, whose copy is then the one out-of-line
-//! function. The stages of the exact evaluation pass through `run` too. A
+//! `#[inline(always)]` too, and where the model calls itself (a spatial
+//! branch that needs another branch's solution) the cycle passes through
+//! `run` again, whose copy is then the one out-of-line function. The
+//! stages of the exact evaluation pass through `run` too. A
 //! profile of a release build that shows `fma` or a model function beside
 //! `kernels::v3` has a function left out (measured: 2.3× on a spatial solve
 //! with twist, 2.2× on two laminae in world axes).

@@ -29,7 +29,8 @@ pub(super) fn cross<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
 /// of its own to the compiler, which may leave it out of line, and then out
 /// of the compiled copy that runs (`crate::kernels`; nine such closures of the
 /// spatial model, unmarked, made two bodies in space 4–6 % slower in `fast`
-/// and one body 7–8 % in `exact`). Which ones the compiler leaves out moves
+/// and one body 7–8 % in `exact`: `benches/scripts/solve-cost`,
+/// docs/performance-log.md, 2026-11-29). Which ones the compiler leaves out moves
 /// other inlining too: marking one more (the two-phase law's sliding
 /// approach) made one body in `fast` 4 % slower, so it is left unmarked.
 #[inline(always)]
@@ -44,7 +45,7 @@ pub(super) fn zip<N: Field>(a: &V3<N>, b: &V3<N>, f: impl Fn(&N, &N) -> N) -> V3
 }
 
 // The common maps below are written out rather than through `map` and
-// `zip`.
+// `zip`, for the reason given at `map`.
 
 /// `k a + b`.
 #[inline(always)]
