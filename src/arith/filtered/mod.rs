@@ -157,7 +157,11 @@ fn once_rounded(h: f64) -> f64 {
 
 /// An f64 value with its static error bound (with `STATIC`) and its
 /// running one (with `RUNNING`); see the module documentation. Without
-/// `RUNNING` nothing reads `E`, so the compiler drops its bookkeeping: (F2)
+/// `RUNNING`, `E` is not formed (each rule tests `RUNNING`, rather than
+/// leaving the dead bookkeeping to the optimiser, which removed it in one
+/// compiled copy of the model and not in another: the service binary's
+/// Figure 2 sweep takes 22 % less time without it, docs/performance-log.md
+/// 2026-11-29): (F2)
 /// alone, for a short computation where it decides nearly everything at a
 /// fraction of the cost. Without `STATIC`, `M` only tells an exact zero
 /// (`0`) from any other value (`1`: a flag, not a magnitude, which nothing
@@ -238,7 +242,11 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
             m,
             lambda: max(self.lambda, o.lambda) + 1.0,
             // A sum does not underflow: its rounding is at most u |h|.
-            e: (self.e + o.e) + U * h.abs(),
+            e: if RUNNING {
+                (self.e + o.e) + U * h.abs()
+            } else {
+                0.0
+            },
         }
     }
 
@@ -267,7 +275,11 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
             h,
             m,
             lambda: self.lambda + o.lambda + 1.0,
-            e: rounded_error(m, product_error(self, o, 0.0), h),
+            e: if RUNNING {
+                rounded_error(m, product_error(self, o, 0.0), h)
+            } else {
+                0.0
+            },
         }
     }
 
@@ -292,7 +304,11 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
             h,
             m,
             lambda: max(self.lambda + b.lambda, c.lambda) + 1.0,
-            e: rounded_error(m, product_error(self, b, c.e), h),
+            e: if RUNNING {
+                rounded_error(m, product_error(self, b, c.e), h)
+            } else {
+                0.0
+            },
         }
     }
 
@@ -321,17 +337,22 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
         // E_y grown by its slack and certified, as (F2)'s divisor is, only
         // when that keeps at least half of |h_y| (a NaN fails the test);
         // |h_x/h_y| ≤ |q| (1 + 2u) plus an underflow. Else no finite bound.
-        let low = (o.h.abs() - o.e * RUNNING_SLACK) * (1.0 - 4.0 * U);
-        let carried = if low >= 0.5 * o.h.abs() && low > 0.0 {
-            q.abs().mul_add(ONE_PLUS_2U, UNDERFLOW).mul_add(o.e, self.e) / low
+        let e = if RUNNING {
+            let low = (o.h.abs() - o.e * RUNNING_SLACK) * (1.0 - 4.0 * U);
+            let carried = if low >= 0.5 * o.h.abs() && low > 0.0 {
+                q.abs().mul_add(ONE_PLUS_2U, UNDERFLOW).mul_add(o.e, self.e) / low
+            } else {
+                f64::INFINITY
+            };
+            rounded_error(m, carried, q)
         } else {
-            f64::INFINITY
+            0.0
         };
         Filtered {
             h: q,
             m,
             lambda: max(self.lambda, o.lambda) + 2.0,
-            e: rounded_error(m, carried, q),
+            e,
         }
     }
 
@@ -369,7 +390,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
                 floored(rounded.abs() * ONE_PLUS_2U)
             },
             lambda: 1.0,
-            e: if num == 0.0 {
+            e: if num == 0.0 || !RUNNING {
                 0.0
             } else {
                 rounded_error(1.0, 0.0, rounded)
@@ -416,16 +437,18 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
         };
         // |√x − √h| = |x − h| / (√x + √h) ≤ E / (√(h − E) + √h), and at
         // most √E however much of h is uncertain (a NaN E stays a NaN).
-        let carried = if grown < self.h {
-            self.e / ((self.h - grown).sqrt() + s)
+        let e = if !RUNNING {
+            0.0
+        } else if grown < self.h {
+            self.e / ((self.h - grown).sqrt() + s) + U * s
         } else {
-            self.e.sqrt()
+            self.e.sqrt() + U * s
         };
         Ok(Filtered {
             h: s,
             m,
             lambda: self.lambda + 2.0,
-            e: carried + U * s,
+            e,
         })
     }
 
