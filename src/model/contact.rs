@@ -95,8 +95,13 @@ pub(crate) struct Answer<N, T> {
     pub mu: Option<N>,
 }
 
-/// A target answer with `det·Δn` and `det·Δt`.
-type Target<N, T> = (Answer<N, T>, N, N);
+/// The target's impulse ([`target_impulse`]): `q_t`, `det·Δn`, `det·Δt`, `μ`.
+struct TargetImpulse<N> {
+    qt: N,
+    sdn: N,
+    sdt: N,
+    mu: Option<N>,
+}
 
 /// What a scene assembles an outcome from: the answer and the law's reports.
 pub(crate) struct Assembly<'a, N, T> {
@@ -225,34 +230,41 @@ fn scaled_impulses<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, qt: &N) -> (N, 
     )
 }
 
-/// The answer with `U_n = −e u_n` and `U_t = −e_t u_t` (Eqs 1, 20, 3),
-/// `q_t = (1 + e_t) u_t`; for one body with `d_c = 0` these are Eqs 21–23
-/// and 25. Also returns `det·Δn` and `det·Δt`, whose signs and ratio decide
-/// the bilinear law without a quotient.
+/// The target's impulse `U_n = −e u_n`, `U_t = −e_t u_t` (Eqs 1, 20, 3),
+/// `q_t = (1 + e_t) u_t`, scaled: `det·Δn` and `det·Δt`, whose signs and
+/// ratio decide the bilinear law without a quotient, and its ratio `μ`
+/// (absent when `Δn = 0`).
+#[inline(always)]
+fn target_impulse<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, et: f64) -> Exact<N, TargetImpulse<N>> {
+    let qt = N::of(1.0).add(&N::of(et)).mul(&sc.reduced().ut);
+    let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
+    let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
+    Ok(TargetImpulse { qt, sdn, sdt, mu })
+}
+
+/// The target answer of [`target_impulse`], formed only where the law
+/// keeps it; for one body with `d_c = 0` these are Eqs 21–23 and 25.
 #[inline(always)]
 fn target_answer<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
     qn: &N,
     et: f64,
-) -> Exact<N, Target<N, S::Turn>> {
+    target: &TargetImpulse<N>,
+) -> Answer<N, S::Turn> {
     let cs = sc.reduced();
-    let qt = N::of(1.0).add(&N::of(et)).mul(&cs.ut);
-    let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
-    let mu = (sign(&sdn)? != Ordering::Equal).then(|| sdt.div(&sdn));
     let inv = &sc.inv_det();
-    let answer = Answer {
+    Answer {
         un: e.mul(&cs.un).neg(),
         ut: N::of(et).mul(&cs.ut).neg(),
         normal_sum: N::of(1.0).sub(e).mul(&cs.un),
         tangential_sum: N::of(1.0).sub(&N::of(et)).mul(&cs.ut),
-        dn: sc.target_normal(qn, &sdn, inv),
-        dt: sdt.mul(inv),
-        turn: sc.target_turn(qn, &qt, inv),
+        dn: sc.target_normal(qn, &target.sdn, inv),
+        dt: target.sdt.mul(inv),
+        turn: sc.target_turn(qn, &target.qt, inv),
         qn: qn.clone(),
-        mu,
-    };
-    Ok((answer, sdn, sdt))
+        mu: target.mu.clone(),
+    }
 }
 
 /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `U_t = 0`
@@ -282,14 +294,15 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     let f = law.cap;
     let (kept, sliding) = law.pointers;
     let qn = normal_target(sc, e);
-    let (target, sdn, sdt) = target_answer(sc, e, &qn, et)?;
+    let target = target_impulse(sc, &qn, et)?;
+    let (sdn, sdt) = (&target.sdn, &target.sdt);
     // For e_t = 0 the target ratio is the critical ratio μ_c itself.
     let known_critical = (et == 0.0).then(|| target.mu.clone());
     if let Some(mu_target) = &target.mu {
         // |det Δt| ≤ f |det Δn|, i.e. |μ_target| ≤ f, decided without a quotient.
-        let room = N::of(f).mul(&abs(&sdn)?).sub(&abs(&sdt)?);
+        let room = N::of(f).mul(&abs(sdn)?).sub(&abs(sdt)?);
         if sign(&room)? != Ordering::Less {
-            if sign(&sdn)? == Ordering::Less {
+            if sign(sdn)? == Ordering::Less {
                 return Err(sc.no_impulse_solution(mu_target.approx(), kept).into());
             }
             return finish(
@@ -297,7 +310,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
                 e,
                 None,
                 law.regimes.0,
-                &target,
+                &target_answer(sc, e, &qn, et, &target),
                 known_critical,
                 outputs,
                 kept,
@@ -310,7 +323,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
     let direction = match sign(&cs.ut)? {
         Ordering::Greater => -1.0,
         Ordering::Less => 1.0,
-        Ordering::Equal => match (sign(&sdt)?, sign(&sdn)?) {
+        Ordering::Equal => match (sign(sdt)?, sign(sdn)?) {
             (Ordering::Less, Ordering::Greater) | (Ordering::Greater, Ordering::Less) => -1.0,
             _ => 1.0,
         },
