@@ -128,53 +128,61 @@ impl ArrowLayout {
             .collect();
         let mut chunk = ArrowChunk { rows, numbers, keys };
         let mut caches: Vec<Keys> = (0..=texts).map(|_| Keys::default()).collect();
-        sweep.for_each_in(range, |row| {
-            for (column, &v) in chunk.numbers.iter_mut().zip(row.axis_values) {
-                column.0.push(v);
-                column.1.append(true);
+        // Column by column, a block of points at a time: one tight loop per
+        // column rather than a pass over every column per point.
+        sweep.for_each_block_in(range, |block| {
+            let answered = block.answered();
+            for (axis, (values, valid)) in chunk.numbers.iter_mut().take(self.axes).enumerate() {
+                values.extend(block.axis(axis));
+                valid.append_n_non_nulls(block.len());
             }
-            let mut number = self.axes;
-            let mut text = 0;
-            let cells = row.outcome.ok();
+            let (mut number, mut text) = (self.axes, 0);
             for (i, &is_text) in self.text.iter().enumerate() {
-                let cell = cells.map(|c| c[i]);
+                let cells = block.column(i).iter().zip(answered);
                 if is_text {
                     let (keys, valid) = &mut chunk.keys[text];
-                    match cell {
-                        Some(Cell::Text(name)) => {
-                            keys.push(caches[text].get(&self.names[text], name));
-                            valid.append(true);
-                        }
-                        _ => {
-                            keys.push(0);
-                            valid.append(false);
+                    for (cell, &ok) in cells {
+                        match cell {
+                            Cell::Text(name) if ok => {
+                                keys.push(caches[text].get(&self.names[text], name));
+                                valid.append(true);
+                            }
+                            _ => {
+                                keys.push(0);
+                                valid.append(false);
+                            }
                         }
                     }
                     text += 1;
                 } else {
                     let (values, valid) = &mut chunk.numbers[number];
-                    match cell {
-                        Some(Cell::Number(x)) if x.is_finite() => {
-                            values.push(x);
-                            valid.append(true);
-                        }
-                        _ => {
-                            values.push(0.0);
-                            valid.append(false);
+                    for (cell, &ok) in cells {
+                        match *cell {
+                            Cell::Number(x) if ok && x.is_finite() => {
+                                values.push(x);
+                                valid.append(true);
+                            }
+                            _ => {
+                                values.push(0.0);
+                                valid.append(false);
+                            }
                         }
                     }
                     number += 1;
                 }
             }
             let (keys, valid) = &mut chunk.keys[texts];
-            match row.outcome {
-                Err(e) => {
-                    keys.push(caches[texts].get(&self.names[texts], e.title()));
-                    valid.append(true);
-                }
-                Ok(_) => {
-                    keys.push(0);
-                    valid.append(false);
+            let mut refused = block.refusals().iter().peekable();
+            for k in 0..block.len() {
+                match refused.next_if(|(i, _)| *i == k) {
+                    Some((_, e)) => {
+                        keys.push(caches[texts].get(&self.names[texts], e.title()));
+                        valid.append(true);
+                    }
+                    None => {
+                        keys.push(0);
+                        valid.append(false);
+                    }
                 }
             }
         });
