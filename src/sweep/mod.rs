@@ -450,22 +450,23 @@ mod tests {
         }
     }
 
-    fn sweep(combine: Combine) -> Sweep<Sum> {
+    /// The first input over `first`, the second over `count` values in `[start, stop]`.
+    fn grid(first: Vec<f64>, [start, stop]: [f64; 2], count: u64, combine: Combine) -> Sweep<Sum> {
         let axes = vec![
             Axis {
                 param: 0,
-                values: AxisValues::List(vec![-10.0, 10.0, 20.0]),
+                values: AxisValues::List(first),
             },
             Axis {
                 param: 1,
-                values: AxisValues::Linspace {
-                    start: 0.0,
-                    stop: 2.0,
-                    count: 3,
-                },
+                values: AxisValues::Linspace { start, stop, count },
             },
         ];
-        Sweep::new(Sum, [0.0; 2], axes, combine, 100).unwrap()
+        Sweep::new(Sum, [0.0; 2], axes, combine, 1000).unwrap()
+    }
+
+    fn sweep(combine: Combine) -> Sweep<Sum> {
+        grid(vec![-10.0, 10.0, 20.0], [0.0, 2.0], 3, combine)
     }
 
     fn collect(s: &Sweep<Sum>, range: Range<u64>) -> Vec<(u64, Vec<f64>, Option<f64>)> {
@@ -499,21 +500,7 @@ mod tests {
     /// range that starts inside a block.
     #[test]
     fn blocks_hold_the_rows_column_by_column() {
-        let axes = vec![
-            Axis {
-                param: 0,
-                values: AxisValues::List(vec![-1.0, 0.5, 3.0]),
-            },
-            Axis {
-                param: 1,
-                values: AxisValues::Linspace {
-                    start: -2.0,
-                    stop: 2.0,
-                    count: 150,
-                },
-            },
-        ];
-        let s = Sweep::new(Sum, [0.0; 2], axes, Combine::Product, 1000).unwrap();
+        let s = grid(vec![-1.0, 0.5, 3.0], [-2.0, 2.0], 150, Combine::Product);
         for range in [0..450, 100..401] {
             let rows = collect(&s, range.clone());
             let mut from_blocks = Vec::new();
