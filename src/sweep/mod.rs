@@ -74,7 +74,7 @@ pub struct Row<'a> {
     pub outcome: Result<&'a [Cell], &'a ImpactError>,
 }
 
-/// A block of evaluated points (at most [`BLOCK`]), column by column.
+/// A block of evaluated points (at most 128), column by column.
 #[derive(Debug)]
 pub struct Block<'a> {
     start: u64,
