@@ -496,8 +496,8 @@ mod tests {
     }
 
     /// The blocks hold the rows' points, column by column: over several
-    /// blocks (a grid of 3 × 150 points), refusals included, and from a
-    /// range that starts inside a block.
+    /// blocks (a grid of 3 × 150 points), refusals included, the whole grid
+    /// and a range from its middle.
     #[test]
     fn blocks_hold_the_rows_column_by_column() {
         let s = grid(vec![-1.0, 0.5, 3.0], [-2.0, 2.0], 150, Combine::Product);
