@@ -3,14 +3,16 @@
 //! `src/model/bodies.rs` reduced to the contact space the laws of
 //! `src/model/contact.rs` are written in.
 
+use std::fmt;
+
 use super::approach::{approach_bound, approaches};
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate_contact};
+use super::{Arithmetic, Case, Model, Stage, StaticBounds, TightFast, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::{Field, Fraction, Radical};
+use crate::arith::{Compensated, Field, Fraction, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::input::{BodiesImpact, Lamina, Law};
 use crate::model::Exact;
-use crate::model::bodies::{approach, bodies};
+use crate::model::bodies::{Geometry, approach, bodies};
 use crate::outcome::{BODY_OUTPUTS, BodiesOutcome, Outputs};
 
 /// The inputs of each body, in request order: parts of the case's declaration.
@@ -110,21 +112,79 @@ impl BodiesImpact {
     }
 }
 
+/// What a sweep validates once: the contact's geometry, when no axis
+/// changes it.
+#[derive(Clone)]
+pub struct Fixed {
+    /// Boxed: a sweep holds one.
+    geometry: Option<Box<Prepared>>,
+}
+
+/// The geometry a sweep forms once.
+type Prepared = super::Prepared<Geometry<TightFast>, Geometry<Compensated>>;
+
+impl fmt::Debug for Fixed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Fixed")
+            .field("geometry", &self.geometry.as_ref().map(|_| "formed"))
+            .finish()
+    }
+}
+
+impl BodiesImpact {
+    /// The inputs the geometry reads: each body's mass, inertia and
+    /// position, the contact point and the normal.
+    fn geometry_inputs(&self) -> impl Iterator<Item = Input> + '_ {
+        let bodies = if self.b.is_some() { 2 } else { 1 };
+        BODY_INPUTS[..bodies]
+            .iter()
+            .flat_map(|inputs| inputs[..4].iter().copied())
+            .chain([Input::ContactX, Input::ContactY, Input::NormalX, Input::NormalY])
+    }
+
+    /// The geometry in both fields if the inputs it reads are valid and in
+    /// this case's fast range, else `None`.
+    fn prepared(&self) -> Option<Box<Prepared>> {
+        let mut copy = *self;
+        let inputs: Vec<f64> = self
+            .geometry_inputs()
+            .filter_map(|i| copy.input_mut(i).map(|x| *x))
+            .collect();
+        let valid = [Some(&self.a), self.b.as_ref()]
+            .into_iter()
+            .flatten()
+            .all(|l| l.mass > 0.0 && l.inertia > 0.0)
+            && inputs.iter().all(|x| x.is_finite())
+            && all_in_range(&inputs)
+            && self.contact.normal.iter().any(|&x| x != 0.0);
+        valid.then(|| {
+            Box::new(crate::kernels::run(|| Prepared {
+                fast: Geometry::new(self),
+                compensated: Geometry::new(self),
+            }))
+        })
+    }
+}
+
+/// The model of a validated contact, with its geometry when a sweep formed
+/// it once.
 struct Pair<'a> {
     impact: &'a BodiesImpact,
+    prepared: Option<&'a Prepared>,
     outputs: Outputs,
 }
 
 impl Model<BodiesOutcome> for Pair<'_> {
     #[inline(always)]
     fn run<N: Radical>(&self, out: &mut BodiesOutcome) -> Exact<N, ()> {
-        bodies::<N>(self.impact, self.outputs, out)
+        let prepared = self.prepared.and_then(Prepared::get::<Geometry<N>>);
+        bodies::<N>(self.impact, prepared, self.outputs, out)
     }
 }
 
 impl Case for BodiesImpact {
     type Outcome = BodiesOutcome;
-    type Fixed = ();
+    type Fixed = Fixed;
 
     reads!(|impact, input| {
         MassA => Some(&mut impact.a.mass),
@@ -186,12 +246,20 @@ impl Case for BodiesImpact {
         }
     }
 
-    fn fix(&self, _swept: &[Input]) {}
+    fn fix(&self, swept: &[Input]) -> Fixed {
+        // A single solve (nothing swept) forms its geometry in the field it runs in.
+        let geometry_swept = self.geometry_inputs().any(|i| swept.contains(&i));
+        Fixed {
+            geometry: (!swept.is_empty() && !geometry_swept)
+                .then(|| self.prepared())
+                .flatten(),
+        }
+    }
 
     #[inline(always)]
     fn evaluate(
         &self,
-        _fixed: &(),
+        fixed: &Fixed,
         outputs: Outputs,
         arithmetic: Arithmetic,
         in_range: bool,
@@ -214,6 +282,7 @@ impl Case for BodiesImpact {
                     StaticBounds::Tight,
                     Pair {
                         impact: &impact,
+                        prepared: fixed.geometry.as_deref(),
                         outputs,
                     },
                     out,
@@ -237,6 +306,49 @@ mod tests {
             velocity: [seed + 0.5, seed + 0.625],
             angular_velocity: seed + 0.75,
         }
+    }
+
+    /// A sweep's geometry formed once (in `fast`'s first field and the
+    /// compensated stage's) answers every point as the geometry formed per
+    /// point does, in both precisions: the same bits, regimes and refusals
+    /// (a separating contact, a law that creates energy), in every law, with
+    /// and without body B; an axis on a geometry input forms it per point.
+    #[test]
+    fn a_geometry_formed_once_answers_as_one_formed_per_point() {
+        let car = |mass: f64, x: f64, vx: f64| Lamina {
+            mass,
+            inertia: mass * 1.6,
+            position: [x, -0.4],
+            velocity: [vx, 0.5],
+            angular_velocity: 0.3,
+        };
+        let laws = crate::impact::one_law_of_each_kind();
+        let axes: [(Input, &[f64]); 3] = [
+            (Input::VelocityAX, &[-20.0, -2.0, 0.0, 3.0, 15.0]),
+            (Input::VelocityAY, &[-8.0, 0.0, 0.5, 6.0]),
+            (Input::AngularVelocityA, &[-4.0, 0.0, 0.3]),
+        ];
+        let mut answered = 0;
+        for b in [None, Some(car(1200.0, 3.0, -2.0))] {
+            for law in laws {
+                let base = BodiesImpact {
+                    a: car(1500.0, 0.0, 15.0),
+                    b,
+                    contact: PlanarContact {
+                        point: [2.2, -0.6],
+                        normal: [-1.0, 0.25],
+                    },
+                    law,
+                };
+                answered += crate::impact::formed_once_answers_as_per_point(
+                    &base,
+                    &axes,
+                    Input::PositionAY,
+                    |fixed: &Fixed| fixed.geometry.is_some(),
+                );
+            }
+        }
+        assert!(answered >= 400, "{answered}");
     }
 
     /// A lamina's values in request order are the slots the declaration

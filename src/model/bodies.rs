@@ -33,113 +33,92 @@ use crate::outcome::{
 };
 use crate::scene::ContactVelocity;
 
-/// One body in the field: its inputs, `1/m`, `1/I`, `r = C − G` and `ρ`.
+/// One body's geometry in the field: its mass and inertia, `1/m`, `1/I`,
+/// `r = C − G` and `ρ`.
 #[derive(Clone)]
 struct Body<N> {
     m: N,
     inertia: N,
     inv_m: N,
     inv_i: N,
-    v: [N; 2],
-    w: N,
+    r: [N; 2],
     /// `(r × n, r · n)`.
     rho: [N; 2],
 }
 
 impl<N: Field> Body<N> {
-    /// Lamina `l`'s body terms for contact point `c`, normal `n` and tangent
-    /// `t`, with its contact-point velocity's normal and tangential parts
-    /// (a function, not a closure: inlined into the compiled copy that runs).
+    /// Lamina `l`'s body terms for contact point `c` and normal `n` (a
+    /// function, not a closure: inlined into the compiled copy that runs).
     #[inline(always)]
-    fn of(l: &Lamina, c: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
-        let (r, u) = contact_point_velocity(l, c);
+    fn of(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> Self {
+        let r = contact_arm(l, c);
         let m = N::of(l.mass);
         let inertia = N::of(l.inertia);
         let one = N::of(1.0);
-        let body = Body {
+        Body {
             inv_m: one.div(&m),
             inv_i: one.div(&inertia),
             rho: [
                 r[0].mul_add(&n[1], &r[1].mul(&n[0]).neg()),
                 r[0].mul_add(&n[0], &r[1].mul(&n[1])),
             ],
+            r,
             m,
             inertia,
+        }
+    }
+}
+
+/// One body's velocities in the field.
+#[derive(Clone)]
+struct Motion<N> {
+    v: [N; 2],
+    w: N,
+}
+
+impl<N: Field> Motion<N> {
+    /// Lamina `l`'s velocities, with its contact-point velocity's normal and
+    /// tangential parts (arm `r`, normal `n`, tangent `t`).
+    #[inline(always)]
+    fn of(l: &Lamina, r: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
+        let u = contact_point_velocity(l, r);
+        let motion = Motion {
             v: [N::of(l.velocity[0]), N::of(l.velocity[1])],
             w: N::of(l.angular_velocity),
         };
-        (body, along(&u, n), along(&u, t))
+        (motion, along(&u, n), along(&u, t))
     }
 }
 
-/// The relative normal contact velocity `ũ_n = (u_A − u_B) · n`, with
-/// `u_b = v_b + ω_b ẑ × r_b`: the same operations in every field, so the f64
-/// value the fast evaluation decides on is the one validation checked.
-#[inline(always)]
-pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
-    let n = [N::of(impact.contact.normal[0]), N::of(impact.contact.normal[1])];
-    let c = [N::of(impact.contact.point[0]), N::of(impact.contact.point[1])];
-    let mut un = body_normal_velocity(&impact.a, &c, &n);
-    if let Some(b) = &impact.b {
-        un = un.sub(&body_normal_velocity(b, &c, &n));
-    }
-    un
-}
-
-/// `u_b · n` of one body.
-#[inline(always)]
-fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
-    let (_, u) = contact_point_velocity(l, c);
-    along(&u, n)
-}
-
-/// `r = C − G` and the contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of one body.
-#[inline(always)]
-fn contact_point_velocity<N: Field>(l: &Lamina, c: &[N; 2]) -> ([N; 2], [N; 2]) {
-    let r = [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))];
-    let w = N::of(l.angular_velocity);
-    let ux = w.neg().mul_add(&r[1], &N::of(l.velocity[0]));
-    let uy = w.mul_add(&r[0], &N::of(l.velocity[1]));
-    (r, [ux, uy])
-}
-
-/// `u · d`, fused as the approach decision forms it.
-#[inline(always)]
-fn along<N: Field>(u: &[N; 2], d: &[N; 2]) -> N {
-    u[0].mul_add(&d[0], &u[1].mul(&d[1]))
-}
-
-/// A validated contact in the field: its contact space and its bodies.
-struct Scene<N> {
+/// What a contact's masses, inertias, positions, point and normal give,
+/// whatever the velocities: `n`, `t`, `|n|²`, the bodies' geometry and
+/// `W̃`. A sweep that changes none of those inputs forms it once
+/// (`crate::impact::bodies`).
+#[derive(Clone)]
+pub(crate) struct Geometry<N> {
     n: [N; 2],
+    t: [N; 2],
     /// `|n|²`.
     nn: N,
     /// Body A, and B when `count` is 2 (else a copy of A, unused).
     bodies: [Body<N>; 2],
     count: usize,
-    /// `ũ_n`, `ũ_t`, `s = −ũ_n` and `W̃`.
-    reduced: Reduced<N>,
+    /// `W̃`: `W̃_nn`, `W̃_nt`, `W̃_tt`.
+    w: [N; 3],
     alpha: N,
     inv_det: N,
 }
 
-impl<N: Field> Scene<N> {
+impl<N: Field> Geometry<N> {
     #[inline(always)]
-    fn new(fast: &BodiesImpact) -> Self {
+    pub(crate) fn new(fast: &BodiesImpact) -> Self {
         let n = [N::of(fast.contact.normal[0]), N::of(fast.contact.normal[1])];
         let c = [N::of(fast.contact.point[0]), N::of(fast.contact.point[1])];
         let nn = n[0].mul_add(&n[0], &n[1].mul(&n[1]));
         let t = [n[1].neg(), n[0].clone()];
-        let one = N::of(1.0);
-        // ũ_n by the operations of `approach`, which validation decided on.
-        let (a, mut un, mut ut) = Body::of(&fast.a, &c, &n, &t);
+        let a = Body::of(&fast.a, &c, &n);
         let (bodies, count) = match &fast.b {
-            Some(l) => {
-                let (b, bun, but) = Body::of(l, &c, &n, &t);
-                un = un.sub(&bun);
-                ut = ut.sub(&but);
-                ([a, b], 2)
-            }
+            Some(l) => ([a, Body::of(l, &c, &n)], 2),
             None => ([a.clone(), a], 1),
         };
         let bodies_in = &bodies[..count];
@@ -166,28 +145,105 @@ impl<N: Field> Scene<N> {
             let cross = a.rho[0].mul_add(&b.rho[1], &a.rho[1].mul(&b.rho[0]).neg());
             det = det.add(&cross.mul(&cross).mul(&a.inv_i).mul(&b.inv_i));
         }
+        Geometry {
+            w: [alpha.add(&wnn), wnt, alpha.add(&wtt)],
+            inv_det: N::of(1.0).div(&det),
+            alpha,
+            nn,
+            n,
+            t,
+            bodies,
+            count,
+        }
+    }
+}
+
+/// The relative normal contact velocity `ũ_n = (u_A − u_B) · n`, with
+/// `u_b = v_b + ω_b ẑ × r_b`: the same operations in every field, so the f64
+/// value the fast evaluation decides on is the one validation checked.
+#[inline(always)]
+pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
+    let n = [N::of(impact.contact.normal[0]), N::of(impact.contact.normal[1])];
+    let c = [N::of(impact.contact.point[0]), N::of(impact.contact.point[1])];
+    let mut un = body_normal_velocity(&impact.a, &c, &n);
+    if let Some(b) = &impact.b {
+        un = un.sub(&body_normal_velocity(b, &c, &n));
+    }
+    un
+}
+
+/// `u_b · n` of one body.
+#[inline(always)]
+fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
+    along(&contact_point_velocity(l, &contact_arm(l, c)), n)
+}
+
+/// `r = C − G` of one body.
+#[inline(always)]
+fn contact_arm<N: Field>(l: &Lamina, c: &[N; 2]) -> [N; 2] {
+    [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))]
+}
+
+/// The contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of one body
+/// with arm `r`.
+#[inline(always)]
+fn contact_point_velocity<N: Field>(l: &Lamina, r: &[N; 2]) -> [N; 2] {
+    let w = N::of(l.angular_velocity);
+    let ux = w.neg().mul_add(&r[1], &N::of(l.velocity[0]));
+    let uy = w.mul_add(&r[0], &N::of(l.velocity[1]));
+    [ux, uy]
+}
+
+/// `u · d`, fused as the approach decision forms it.
+#[inline(always)]
+fn along<N: Field>(u: &[N; 2], d: &[N; 2]) -> N {
+    u[0].mul_add(&d[0], &u[1].mul(&d[1]))
+}
+
+/// A validated contact in the field: its geometry, its bodies' velocities
+/// and its contact space.
+struct Scene<'g, N> {
+    g: &'g Geometry<N>,
+    /// Body A's, and B's when the geometry's `count` is 2.
+    motion: [Motion<N>; 2],
+    /// `ũ_n`, `ũ_t`, `s = −ũ_n` and `W̃`.
+    reduced: Reduced<N>,
+}
+
+impl<'g, N: Field> Scene<'g, N> {
+    #[inline(always)]
+    fn new(g: &'g Geometry<N>, fast: &BodiesImpact) -> Self {
+        let (n, t) = (&g.n, &g.t);
+        // ũ_n by the operations of `approach`, which validation decided on.
+        let (a, mut un, mut ut) = Motion::of(&fast.a, &g.bodies[0].r, n, t);
+        let motion = match &fast.b {
+            Some(l) => {
+                let (b, bun, but) = Motion::of(l, &g.bodies[1].r, n, t);
+                un = un.sub(&bun);
+                ut = ut.sub(&but);
+                [a, b]
+            }
+            None => [a.clone(), a],
+        };
+        let [wnn, wnt, wtt] = g.w.clone();
         Scene {
+            g,
+            motion,
             reduced: Reduced {
                 s: un.neg(),
                 un,
                 ut,
-                wnn: alpha.add(&wnn),
+                wnn,
                 wnt,
-                wtt: alpha.add(&wtt),
+                wtt,
             },
-            inv_det: one.div(&det),
-            alpha,
-            nn,
-            n,
-            bodies,
-            count,
         }
     }
 
     /// `ũ_n / |n|` and friends: `x / |n|` correctly rounded.
     #[inline(always)]
     fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
-        out_times_sqrt(output, &x.div(&self.nn), &self.nn)
+        out_times_sqrt(output, &x.div(&self.g.nn), &self.g.nn)
     }
 
     /// The energies of the pair: `T = Σ ½ m v² + ½ I ω²`, the loss `−½ q·(ũ + Ũ)`
@@ -198,15 +254,16 @@ impl<N: Field> Scene<N> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
         let Reduced { un, ut, .. } = &self.reduced;
-        let mut adjugate = self.alpha.mul(&un.mul_add(un, &ut.mul(ut)));
-        for b in &self.bodies[..self.count] {
-            let linear = b.v[0].mul_add(&b.v[0], &b.v[1].mul(&b.v[1])).mul(&b.m);
-            initial = initial.add(&h.mul(&b.inertia.mul(&b.w).mul_add(&b.w, &linear)));
+        let mut adjugate = self.g.alpha.mul(&un.mul_add(un, &ut.mul(ut)));
+        for (b, motion) in self.g.bodies.iter().zip(&self.motion).take(self.g.count) {
+            let (v, w) = (&motion.v, &motion.w);
+            let linear = v[0].mul_add(&v[0], &v[1].mul(&v[1])).mul(&b.m);
+            initial = initial.add(&h.mul(&b.inertia.mul(w).mul_add(w, &linear)));
             let lever = b.rho[1].mul_add(un, &b.rho[0].mul(ut).neg());
             adjugate = adjugate.add(&lever.mul(&lever).mul(&b.inv_i));
         }
         let loss = h.mul(work).neg();
-        let max_loss = h.mul(&adjugate).mul(&self.inv_det);
+        let max_loss = h.mul(&adjugate).mul(&self.g.inv_det);
         // The clamps only act on f64 roundings: the exact values satisfy them.
         Ok(PlanarEnergy {
             initial: out(Output::InitialEnergy, &initial)?,
@@ -218,7 +275,7 @@ impl<N: Field> Scene<N> {
     }
 }
 
-impl<N: Field> ContactSpace<N> for Scene<N> {
+impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     /// The spins follow from `q` at assembly.
     type Turn = ();
     type Outcome = BodiesOutcome;
@@ -236,7 +293,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
         ImpactError::NoImpulseSolution {
             input: law,
             impulse_ratio: mu,
-            d: self.ratio_coefficient(mu).0.div(&self.alpha).approx(),
+            d: self.ratio_coefficient(mu).0.div(&self.g.alpha).approx(),
         }
     }
     #[inline(always)]
@@ -247,7 +304,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     fn ratio_turn(&self, _lever: &(), _per: &N) {}
     #[inline(always)]
     fn inv_det(&self) -> N {
-        self.inv_det.clone()
+        self.g.inv_det.clone()
     }
     #[inline(always)]
     fn target_normal(&self, _qn: &N, sdn: &N, inv_det: &N) -> N {
@@ -279,22 +336,29 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     fn assemble(&self, x: &Assembly<'_, N, ()>, outcome: &mut BodiesOutcome) -> Exact<N, ()> {
         let a = x.answer;
         let (qn, qt) = (&a.dn, &a.dt);
-        let [nx, ny] = &self.n;
+        let [nx, ny] = &self.g.n;
         // P = q_n n + q_t t, t = (−n_y, n_x).
         let p = [nx.mul_add(qn, &ny.mul(qt).neg()), ny.mul_add(qn, &nx.mul(qt))];
         let p2 = p[0].mul_add(&p[0], &p[1].mul(&p[1]));
         let mut bodies = [BodyOutcome::default(); 2];
-        for (k, b) in self.bodies[..self.count].iter().enumerate() {
+        for (k, (b, motion)) in self
+            .g
+            .bodies
+            .iter()
+            .zip(&self.motion)
+            .take(self.g.count)
+            .enumerate()
+        {
             let names = &BODY_OUTPUTS[k];
             let signed = |v: N| if k == 0 { v } else { v.neg() };
             let dv = [signed(p[0].mul(&b.inv_m)), signed(p[1].mul(&b.inv_m))];
             let dw = signed(b.rho[0].mul_add(qn, &b.rho[1].mul(qt)).mul(&b.inv_i));
             bodies[k] = BodyOutcome {
                 velocity: [
-                    out(names[0], &b.v[0].add(&dv[0]))?,
-                    out(names[1], &b.v[1].add(&dv[1]))?,
+                    out(names[0], &motion.v[0].add(&dv[0]))?,
+                    out(names[1], &motion.v[1].add(&dv[1]))?,
                 ],
-                angular_velocity: out(names[2], &b.w.add(&dw))?,
+                angular_velocity: out(names[2], &motion.w.add(&dw))?,
                 velocity_change: [out(names[3], &dv[0])?, out(names[4], &dv[1])?],
                 delta_v: out_times_sqrt(names[5], &b.inv_m, &p2)?,
                 angular_velocity_change: out(names[6], &dw)?,
@@ -311,8 +375,8 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
             },
         };
         let impulse = WorldImpulse {
-            normal: out_times_sqrt(Output::NormalImpulse, qn, &self.nn)?,
-            tangential: out_times_sqrt(Output::TangentialImpulse, qt, &self.nn)?,
+            normal: out_times_sqrt(Output::NormalImpulse, qn, &self.g.nn)?,
+            tangential: out_times_sqrt(Output::TangentialImpulse, qt, &self.g.nn)?,
             x: out(Output::ImpulseX, &p[0])?,
             y: out(Output::ImpulseY, &p[1])?,
         };
@@ -330,7 +394,7 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
         };
         *outcome = BodiesOutcome {
             bodies,
-            body_count: self.count,
+            body_count: self.g.count,
             contact_velocity,
             impulse,
             impulse_ratio,
@@ -344,21 +408,31 @@ impl<N: Field> ContactSpace<N> for Scene<N> {
     }
 }
 
-/// A validated planar contact in the field `N` under its validated law:
+/// A validated planar contact in the field `N` under its validated law, with
+/// its geometry when a sweep formed it once:
 /// refused unless the contact approaches (`ũ_n < 0`, decided exactly in the
 /// exact fields; the fast evaluation is only asked where validation found the
 /// f64 sign certain).
 #[inline(always)]
 pub(crate) fn bodies<N: Field>(
     impact: &BodiesImpact,
+    prepared: Option<&Geometry<N>>,
     outputs: Outputs,
     out: &mut BodiesOutcome,
 ) -> Exact<N, ()> {
-    let scene = Scene::<N>::new(impact);
+    let formed;
+    let geometry = match prepared {
+        Some(geometry) => geometry,
+        None => {
+            formed = Geometry::new(impact);
+            &formed
+        }
+    };
+    let scene = Scene::new(geometry, impact);
     if sign(&scene.reduced.s)? != Ordering::Greater {
         return Err(ImpactError::NotApproaching {
             input: Input::VelocityA,
-            normal_contact_velocity: scene.reduced.un.approx() / scene.nn.approx().sqrt(),
+            normal_contact_velocity: scene.reduced.un.approx() / geometry.nn.approx().sqrt(),
         }
         .into());
     }

@@ -2,7 +2,6 @@
 //! inertia tensors, one tangential law and an optional twist law (the
 //! `spatial` endpoint). The model is `src/model/spatial/`.
 
-use std::any::Any;
 use std::cmp::Ordering;
 use std::fmt;
 
@@ -228,24 +227,8 @@ pub struct Fixed {
     geometry: Option<Box<Prepared>>,
 }
 
-/// A sweep's geometry in the two fields that answer nearly every point:
-/// `fast`'s first (the running bound alone) and `exact`'s first (the
-/// compensated stage). Every other field forms its own per point.
-#[derive(Clone)]
-struct Prepared {
-    fast: Geometry<LooseFast>,
-    compensated: Geometry<Compensated>,
-}
-
-impl Prepared {
-    /// The geometry in `N`, if it is one of the two fields.
-    #[inline(always)]
-    fn get<N: Radical>(&self) -> Option<&Geometry<N>> {
-        let fast: &dyn Any = &self.fast;
-        let compensated: &dyn Any = &self.compensated;
-        fast.downcast_ref().or_else(|| compensated.downcast_ref())
-    }
-}
+/// The geometry a sweep forms once.
+type Prepared = super::Prepared<Geometry<LooseFast>, Geometry<Compensated>>;
 
 impl fmt::Debug for Fixed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -303,7 +286,7 @@ struct Space<'a> {
 impl Model<SpatialOutcome> for Space<'_> {
     #[inline(always)]
     fn run<N: Radical>(&self, out: &mut SpatialOutcome) -> Exact<N, ()> {
-        let prepared = self.prepared.and_then(Prepared::get::<N>);
+        let prepared = self.prepared.and_then(Prepared::get::<Geometry<N>>);
         spatial::<N>(self.impact, prepared, self.outputs, out)
     }
 }

@@ -66,38 +66,17 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
         (ball, None, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
         (block, Some(plate), [0.01, 0.0, 0.0], [0.1, 0.0, 1.0]),
     ];
-    let laws = [
-        Law::Frictionless { restitution: 0.6 },
-        Law::ImpulseRatio {
-            restitution: 0.5,
-            impulse_ratio: 0.2,
-        },
-        Law::Friction {
-            restitution: 0.75,
-            friction: 0.6,
-        },
-        Law::TangentialRestitution {
-            restitution: 0.5,
-            friction: 0.3,
-            tangential_restitution: 0.2,
-        },
-        Law::KineticRestitution {
-            value: 0.5,
-            approach_impulse_ratio: 0.2,
-            rebound_impulse_ratio: 0.1,
-        },
-        Law::KineticFriction {
-            value: 0.5,
-            approach_friction: 0.3,
-            rebound_impulse_ratio: 0.0,
-        },
-    ];
+    let laws = crate::impact::one_law_of_each_kind();
     let twist = Twist {
         restitution: 0.1,
         friction: 0.2,
         pitch_radius: 0.004,
     };
-    let swept = [Input::VelocityAX, Input::VelocityAZ, Input::AngularVelocityAY];
+    let axes: [(Input, &[f64]); 3] = [
+        (Input::VelocityAX, &[-3.0, 0.0, 0.5, 20.0]),
+        (Input::VelocityAZ, &[-10.0, -1e-3, 0.0, 1.0]),
+        (Input::AngularVelocityAY, &[-900.0, 0.0, 300.0]),
+    ];
     let mut answered = 0;
     for (a, b, point, normal) in scenes {
         for law in laws {
@@ -109,34 +88,12 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
                     law,
                     torsion,
                 };
-                // A single solve forms its own, in the field it runs in.
-                assert!(base.fix(&[]).geometry.is_none());
-                for precision in [Precision::Fast, Precision::Exact] {
-                    let once = Solver::new(&base, &swept, Outputs::ALL, precision);
-                    assert!(once.fixed.geometry.is_some());
-                    let per_point = Solver::new(
-                        &base,
-                        &[&swept[..], &[Input::PositionAZ]].concat(),
-                        Outputs::ALL,
-                        precision,
-                    );
-                    assert!(per_point.fixed.geometry.is_none());
-                    for vx in [-3.0, 0.0, 0.5, 20.0] {
-                        for vz in [-10.0, -1e-3, 0.0, 1.0] {
-                            for wy in [-900.0, 0.0, 300.0] {
-                                let mut p = base;
-                                p.a.velocity[0] = vx;
-                                p.a.velocity[2] = vz;
-                                p.a.angular_velocity[1] = wy;
-                                let got = format!("{:?}", once.solve(&p));
-                                assert_eq!(got, format!("{:?}", per_point.solve(&p)), "{p:?}");
-                                let single = crate::impact::solve(&p, Outputs::ALL, precision);
-                                assert_eq!(got, format!("{single:?}"), "{p:?}");
-                                answered += usize::from(single.is_ok());
-                            }
-                        }
-                    }
-                }
+                answered += crate::impact::formed_once_answers_as_per_point(
+                    &base,
+                    &axes,
+                    Input::PositionAZ,
+                    |fixed: &Fixed| fixed.geometry.is_some(),
+                );
             }
         }
     }
