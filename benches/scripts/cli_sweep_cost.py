@@ -14,8 +14,10 @@ model, which can run faster than the binary's (docs/performance-log.md,
 Scenes: Figure 2's Coulomb scene (examples/figure2_coulomb_friction.json)
 over 2 x 10^6 values of v_t, sliding ones (v_t in [2, 5]) with one output
 (V_ct), and v_t in [-5, 5] with one output and with every output; the
-topspin tennis ball (examples/spatial_tennis_topspin.json) over sideways
-velocity x topspin, 400 x 500 points, every output.
+two cars of examples/planar_car_to_car_sweep.json over 10^6 values of
+car B's velocity, every output; the topspin tennis ball
+(examples/spatial_tennis_topspin.json) over sideways velocity x topspin,
+400 x 500 points, every output.
 """
 import copy, json, os, subprocess, sys, tempfile, time
 
@@ -38,6 +40,13 @@ def oblique(start, stop, outputs):
     return request
 
 
+def cars():
+    request = copy.deepcopy(example("planar_car_to_car_sweep.json"))
+    request["axes"] = [{"path": "/bodies/1/velocity/y", "linspace": {"start": 2.0, "stop": 30.0, "count": 1_000_000}}]
+    request.pop("outputs")
+    return request
+
+
 def tennis():
     return {
         "case": "spatial",
@@ -54,6 +63,7 @@ SCENES = {
     "figure 2, sliding, V_ct": (oblique(2.0, 5.0, V_CT), 2_000_000),
     "figure 2, V_ct": (oblique(-5.0, 5.0, V_CT), 2_000_000),
     "figure 2, every output": (oblique(-5.0, 5.0, None), 2_000_000),
+    "two cars, every output": (cars(), 1_000_000),
     "tennis ball, every output": (tennis(), 200_000),
 }
 
