@@ -322,7 +322,7 @@ mod tests {
             velocity: [vx, 0.5],
             angular_velocity: 0.3,
         };
-        let laws = crate::impact::one_law_of_each_kind();
+        let laws = crate::impact::testing::one_law_of_each_kind();
         let axes: [(Input, &[f64]); 3] = [
             (Input::VelocityAX, &[-20.0, -2.0, 0.0, 3.0, 15.0]),
             (Input::VelocityAY, &[-8.0, 0.0, 0.5, 6.0]),
@@ -340,7 +340,7 @@ mod tests {
                     },
                     law,
                 };
-                answered += crate::impact::formed_once_answers_as_per_point(
+                answered += crate::impact::testing::formed_once_answers_as_per_point(
                     &base,
                     &axes,
                     Input::PositionAY,

@@ -9,6 +9,7 @@
 //! walks the grid with an odometer, resets only the inputs whose axis moved,
 //! and reuses its buffers: no allocation per point.
 
+mod block;
 mod case;
 mod grid;
 pub mod reduce;
@@ -18,6 +19,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use std::sync::mpsc;
 
+pub use block::Block;
 pub use case::{CaseSweep, CaseSweepError};
 use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points, shard};
@@ -72,86 +74,6 @@ pub struct Row<'a> {
     pub axis_indices: &'a [u64],
     /// The output cells, or why the point has no answer.
     pub outcome: Result<&'a [Cell], &'a ImpactError>,
-}
-
-/// A block of evaluated points (at most 128), column by column.
-#[derive(Debug)]
-pub struct Block<'a> {
-    start: u64,
-    len: usize,
-    axes: usize,
-    axis_values: &'a [f64],
-    axis_indices: &'a [u64],
-    /// Column `c`'s cells start at `c · BLOCK`.
-    cells: &'a [Cell],
-    answered: &'a [bool],
-    refusals: &'a [(usize, ImpactError)],
-}
-
-impl<'a> Block<'a> {
-    /// The index of the block's first point in the sweep.
-    pub fn start(&self) -> u64 {
-        self.start
-    }
-
-    /// The number of points.
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Whether the block has no points (never, for a block handed to a visitor).
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
-    /// Axis `axis`'s values, point by point.
-    #[inline]
-    pub fn axis(&self, axis: usize) -> impl Iterator<Item = f64> + '_ {
-        self.axis_values.iter().skip(axis).step_by(self.axes).copied()
-    }
-
-    /// Output column `column`'s cells, point by point (a refused point's
-    /// cell is not its answer: see [`answered`](Self::answered)).
-    #[inline]
-    pub fn column(&self, column: usize) -> &'a [Cell] {
-        &self.cells[column * BLOCK..column * BLOCK + self.len]
-    }
-
-    /// Whether each point has an answer.
-    #[inline]
-    pub fn answered(&self) -> &'a [bool] {
-        self.answered
-    }
-
-    /// The points without an answer, in order: position in the block, and why.
-    #[inline]
-    pub fn refusals(&self) -> &'a [(usize, ImpactError)] {
-        self.refusals
-    }
-
-    /// Hands each point to `visit` as a [`Row`], its cells gathered into `row`.
-    #[inline(always)]
-    fn rows(&self, row: &mut [Cell], visit: &mut impl FnMut(Row<'_>)) {
-        let axes = self.axes;
-        let mut refused = self.refusals.iter().peekable();
-        for k in 0..self.len {
-            let outcome = match refused.next_if(|(i, _)| *i == k) {
-                Some((_, e)) => Err(e),
-                None => {
-                    for (column, cell) in row.iter_mut().enumerate() {
-                        *cell = self.cells[column * BLOCK + k];
-                    }
-                    Ok(&row[..])
-                }
-            };
-            visit(Row {
-                index: self.start + k as u64,
-                axis_values: &self.axis_values[k * axes..(k + 1) * axes],
-                axis_indices: &self.axis_indices[k * axes..(k + 1) * axes],
-                outcome,
-            });
-        }
-    }
 }
 
 /// A case over a grid of points, or over one range of them (a slice of the

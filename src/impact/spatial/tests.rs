@@ -66,7 +66,7 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
         (ball, None, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
         (block, Some(plate), [0.01, 0.0, 0.0], [0.1, 0.0, 1.0]),
     ];
-    let laws = crate::impact::one_law_of_each_kind();
+    let laws = crate::impact::testing::one_law_of_each_kind();
     let twist = Twist {
         restitution: 0.1,
         friction: 0.2,
@@ -88,7 +88,7 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
                     law,
                     torsion,
                 };
-                answered += crate::impact::formed_once_answers_as_per_point(
+                answered += crate::impact::testing::formed_once_answers_as_per_point(
                     &base,
                     &axes,
                     Input::PositionAZ,
