@@ -16,8 +16,22 @@ pub(crate) trait Field: Clone {
     /// uninhabited ([`Infallible`]) in exact arithmetic,
     /// which decides every sign and rounding.
     type Undecided;
+    /// How many points a value holds: one, but in [`super::Lanes`].
+    const LANES: usize = 1;
     /// An f64 input, exactly.
     fn of(x: f64) -> Self;
+    /// An input whose value at lane `i` is `x(i)`, exactly ([`Field::of`]
+    /// of `x(0)` in a field of one point).
+    #[inline(always)]
+    fn of_lanes(x: impl Fn(usize) -> f64) -> Self {
+        Self::of(x(0))
+    }
+    /// [`Field::quotient_of`] of `(num, den, rounded) = q(i)` at lane `i`.
+    #[inline(always)]
+    fn quotient_of_lanes(q: impl Fn(usize) -> (f64, f64, f64)) -> Self {
+        let (num, den, rounded) = q(0);
+        Self::quotient_of(num, den, rounded)
+    }
     fn add(&self, o: &Self) -> Self;
     fn sub(&self, o: &Self) -> Self;
     fn mul(&self, o: &Self) -> Self;
@@ -56,6 +70,13 @@ pub(crate) trait Field: Clone {
     fn round_output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Self::Undecided> {
         let _ = kind;
         self.round_times_sqrt(y)
+    }
+    /// Every lane's output of unit class `kind`, lane `i`'s in `out[i]`
+    /// (`out[0]` is [`Field::round_output`] in a field of one point).
+    #[inline(always)]
+    fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Self::Undecided> {
+        out[0] = self.round_output(kind)?;
+        Ok(())
     }
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;

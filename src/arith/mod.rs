@@ -15,6 +15,8 @@
 //!   (ill-conditioned quotients, exponents near the ends of the range);
 //! - `Bounded<true>`: the same keeping exact sums and products exact (exact
 //!   rounding ties and cancelled zeros formed without a quotient);
+//! - [`Lanes`] (`lanes.rs`): `fast`'s first field for several points of a
+//!   sweep at once, deciding where every lane decides alike;
 //! - [`Surd`]s, `a + b √g` in exact fractions of big integers, which always
 //!   decide (every answer holds at most one square root, that of its sliding
 //!   direction in space).
@@ -27,6 +29,7 @@ mod compensated;
 mod field;
 mod filtered;
 mod fraction;
+mod lanes;
 mod surd;
 
 pub(crate) use bounded::Bounded;
@@ -34,4 +37,5 @@ pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, OutOfRange, Undecided};
 pub(crate) use filtered::{Filtered, Uncertain, measure_against};
 pub(crate) use fraction::Fraction;
+pub(crate) use lanes::{Lanes, MAX_LANES, measure_lanes_against};
 pub(crate) use surd::{Radical, Surd};

@@ -1,9 +1,9 @@
 //! The planar case: a rigid lamina or a point mass against a barrier, with
 //! one tangential law (the normal, oblique and tangential endpoints).
 
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, evaluate};
+use super::{Arithmetic, Case, LANES, Model, Stage, StaticBounds, evaluate};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::Radical;
+use crate::arith::{Lanes, Radical};
 use crate::error::{ImpactError, Input, Result, finite, in_range, positive};
 use crate::input::{BarrierBody, BarrierImpact, Law};
 use crate::model::Exact;
@@ -231,6 +231,57 @@ impl Case for BarrierImpact {
         }
     }
 
+    /// A rigid body under a law no axis changes.
+    #[inline(always)]
+    fn in_lanes(fixed: &Fixed) -> bool {
+        matches!(fixed.law, Some(Ok(_)))
+    }
+
+    /// A rigid body's points under a law no axis changes, in lanes.
+    #[inline(always)]
+    fn evaluate_lanes(
+        impacts: &[Self; LANES],
+        fixed: &Fixed,
+        outputs: Outputs,
+        out: &mut [BarrierOutcome; LANES],
+    ) -> bool {
+        let Some(Ok(law)) = &fixed.law else {
+            return false;
+        };
+        let scenes = match &fixed.scene {
+            Some(Ok(scene)) => [*scene; LANES],
+            Some(Err(_)) => return false,
+            None => {
+                let Ok(first) = impacts[0].scene() else {
+                    return false;
+                };
+                let mut scenes = [first; LANES];
+                for (scene, impact) in scenes.iter_mut().zip(impacts).skip(1) {
+                    match impact.scene() {
+                        Ok(s) => *scene = s,
+                        Err(_) => return false,
+                    }
+                }
+                scenes
+            }
+        };
+        let mut scales = [ErrorScales::UNPROMISED; LANES];
+        for (scale, impact) in scales.iter_mut().zip(impacts) {
+            *scale = impact.error_scales();
+        }
+        crate::arith::measure_lanes_against(&scales);
+        // A compiled body of its own (as `fast`'s single solve has,
+        // `super::run_fast`), not inlined into each sweep's loop: the loop
+        // around it, which also solves points one by one, stays small (with
+        // the model in lanes inlined, it spilled its own values across the
+        // model's frame and took half as long again per point).
+        crate::kernels::run(
+            #[inline(always)]
+            || model::rigid_lanes::<Lanes<LANES>, LANES>(&scenes, law, outputs, out),
+        )
+        .is_ok()
+    }
+
     #[inline(always)]
     fn evaluate(
         &self,
@@ -338,6 +389,59 @@ mod tests {
             let reads = rigid.reads();
             assert_eq!(reads[..7], BarrierImpact::INPUTS[..7]);
             assert_eq!(reads[7..], coefficients);
+        }
+    }
+}
+
+#[cfg(test)]
+mod lanes {
+    use super::*;
+    use crate::impact::{Precision, solve};
+
+    /// Figure 2's scene (`examples/figure2_coulomb_friction.json`) at `v_t`.
+    fn figure2(vt: f64) -> BarrierImpact {
+        BarrierImpact::rigid(
+            1.0,
+            0.00125,
+            Contact {
+                tangential_offset: 0.0,
+                normal_offset: 0.05,
+            },
+            PlanarVelocity {
+                normal: -1.0,
+                tangential: vt,
+                angular: 0.0,
+            },
+            Law::Friction {
+                restitution: 0.93,
+                friction: 0.123,
+            },
+        )
+    }
+
+    /// Four points that take one path are answered together, each as its
+    /// single solve; four that do not (one sticks, three slide) are left to
+    /// be solved one by one.
+    #[test]
+    fn points_on_one_path_are_answered_in_lanes_as_single_solves() {
+        let fixed = figure2(0.0).fix(&[Input::TangentialVelocity]);
+        let cases: [([f64; LANES], bool); 4] = [
+            ([2.0, 2.5, 3.0, 4.75], true),
+            ([-2.0, -2.5, -3.0, -4.75], true),
+            ([0.01, 0.02, 0.03, 0.04], true),
+            ([0.0, 3.0, 4.0, 5.0], false),
+        ];
+        for (vts, together) in cases {
+            let impacts = vts.map(figure2);
+            let mut out = [BarrierOutcome::default(); LANES];
+            let answered = BarrierImpact::evaluate_lanes(&impacts, &fixed, Outputs::ALL, &mut out);
+            assert_eq!(answered, together, "{vts:?}");
+            if answered {
+                for (impact, outcome) in impacts.iter().zip(&out) {
+                    let single = solve(impact, Outputs::ALL, Precision::Fast);
+                    assert_eq!(format!("{single:?}"), format!("{:?}", Ok::<_, ()>(outcome)));
+                }
+            }
         }
     }
 }

@@ -1,8 +1,8 @@
 //! The solver's entry points: one impact ([`solve`]), many at once
 //! ([`solve_many`]), and the points of a sweep ([`Solver`]).
 
-use super::{Arithmetic, Case, Precision, Stage, all_in_fast_range};
-use crate::error::{Input, Result};
+use super::{Arithmetic, Case, LANES, Precision, Stage, all_in_fast_range};
+use crate::error::{ImpactError, Input, Result};
 use crate::outcome::Outputs;
 
 /// Solves one impact in `precision`, computing the optional `outputs`.
@@ -98,6 +98,57 @@ impl<C: Case> Solver<C> {
     pub fn solve(&self, impact: &C) -> Result<C::Outcome> {
         let mut outcome = C::Outcome::default();
         self.solve_into(impact, &mut outcome).map(|()| outcome)
+    }
+
+    /// Whether [`Solver::solve_block_into`] evaluates points together: in
+    /// `fast`, with every input not swept in the fast range, where the case
+    /// can ([`Case::in_lanes`]).
+    #[inline(always)]
+    pub fn in_lanes(&self) -> bool {
+        self.arithmetic == Arithmetic::Fast && self.fixed_in_range && C::in_lanes(&self.fixed)
+    }
+
+    /// Solves `impacts` into `outs` (of the same length), handing each
+    /// refusal to `refused` with the point's position: each point's answer
+    /// or refusal is what [`Solver::solve_into`] gives it, but in `fast` the
+    /// points go through the model [`LANES`] at a time where the case can
+    /// ([`Case::evaluate_lanes`]), and one by one where it cannot (a
+    /// refusal, a decision the lanes do not all take alike).
+    #[inline(always)]
+    pub fn solve_block_into(
+        &self,
+        impacts: &[C],
+        outs: &mut [C::Outcome],
+        mut refused: impl FnMut(usize, ImpactError),
+    ) {
+        assert_eq!(impacts.len(), outs.len(), "one outcome per impact");
+        // Points before `alone_until` are solved one by one.
+        let mut alone_until = if self.in_lanes() { 0 } else { impacts.len() };
+        let mut k = 0;
+        while k < impacts.len() {
+            if k >= alone_until {
+                if let (Some(points), Some(answers)) = (
+                    impacts[k..].first_chunk::<LANES>(),
+                    outs[k..].first_chunk_mut::<LANES>(),
+                ) {
+                    // (A loop, not a closure: one compiled apart from the
+                    // copy that runs costs a call per point.)
+                    let mut in_range = true;
+                    for point in points {
+                        in_range &= all_in_fast_range(point, &self.swept);
+                    }
+                    if in_range && C::evaluate_lanes(points, &self.fixed, self.outputs, answers) {
+                        k += LANES;
+                        continue;
+                    }
+                }
+                alone_until = k + LANES;
+            }
+            if let Err(e) = self.solve_into(&impacts[k], &mut outs[k]) {
+                refused(k, e);
+            }
+            k += 1;
+        }
     }
 
     /// Solves `impact` into `out` (left as it was on a refusal).

@@ -231,6 +231,31 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     }
     /// Validates what no axis in `swept` changes, once for a sweep.
     fn fix(&self, swept: &[Input]) -> Self::Fixed;
+    /// Whether [`Case::evaluate_lanes`] may answer points of a sweep whose
+    /// [`Case::fix`] result is `fixed` (a case without an evaluation in
+    /// lanes: never).
+    #[inline(always)]
+    fn in_lanes(fixed: &Self::Fixed) -> bool {
+        let _ = fixed;
+        false
+    }
+    /// Evaluates `impacts`, points of one sweep whose [`Case::fix`] result is
+    /// `fixed`, together in `fast`'s first field ([`crate::arith::Lanes`]):
+    /// `true` when every one was answered there (each outcome its single
+    /// solve, bit for bit), `false` when they are to be solved one by one
+    /// (outcomes partly written). Called in `fast` alone, with every input in
+    /// the fast range; a case that has no evaluation in lanes answers
+    /// `false`.
+    #[inline(always)]
+    fn evaluate_lanes(
+        impacts: &[Self; LANES],
+        fixed: &Self::Fixed,
+        outputs: Outputs,
+        out: &mut [Self::Outcome; LANES],
+    ) -> bool {
+        let _ = (impacts, fixed, outputs, out);
+        false
+    }
     /// Validates and evaluates the impact in `arithmetic` into `out`, `fixed`
     /// being this impact's own [`Case::fix`] result for the inputs not swept;
     /// `in_range` tells `Fast` whether every input read is in the fast range.
@@ -246,6 +271,10 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
         out: &mut Self::Outcome,
     ) -> (Result<()>, Stage);
 }
+
+/// How many points a sweep evaluates together where its case can
+/// ([`Case::evaluate_lanes`]): four doubles fill an AVX2 register.
+pub(crate) const LANES: usize = crate::arith::MAX_LANES;
 
 /// The largest and smallest magnitudes (2^±200) the fast evaluation takes:
 /// products of up to five such inputs stay normal doubles, so no intermediate

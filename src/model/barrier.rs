@@ -15,17 +15,26 @@
 //! scaled by `k²` so that no `1/k²` can overflow.
 
 use super::contact::{Assembly, ContactSpace, Reduced, critical_output, under_law};
-use super::{Exact, half, out};
+use std::cmp::Ordering;
+
+use super::{Exact, half, out, outs, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
 use crate::input::Law;
 use crate::outcome::{BarrierOutcome, ContactVelocities, Impulse, Outputs, PlanarEnergy, Regime};
 use crate::scene::{BarrierScene, ContactVelocity, PlanarVelocity};
 
-/// A planar scene in the field: every input exactly, and `v_cn`, `v_ct`, `k²`, `S`.
-struct Scene<'a, N> {
-    /// The validated f64 scene (for error payloads and the fused contact velocities).
-    fast: &'a BarrierScene,
+/// A planar scene in the field: every input exactly, and `v_cn`, `v_ct`, `k²`,
+/// `S`; the scenes of `L` points at once in a field of `L` lanes
+/// ([`crate::arith::Lanes`]), of one point in every other.
+struct Scene<'a, N, const L: usize> {
+    /// The validated f64 scenes, one per lane (for error payloads and the
+    /// fused contact velocities).
+    fast: &'a [BarrierScene; L],
+    /// Whether `d_c = 0` exactly: then `D = 1`, `S = k² + d_d²` and `Δn = q_n` in every answer.
+    central: bool,
+    /// Whether `d_d = 0` exactly.
+    level: bool,
     m: N,
     inertia: N,
     k2: N,
@@ -40,25 +49,30 @@ struct Scene<'a, N> {
     total: N,
 }
 
-impl<'a, N: Field> Scene<'a, N> {
+impl<'a, N: Field, const L: usize> Scene<'a, N, L> {
+    /// The scene in the field.
     #[inline(always)]
-    fn new(fast: &'a BarrierScene) -> Self {
-        let m = N::of(fast.body.mass());
-        let inertia = N::of(fast.body.inertia());
-        let dc = N::of(fast.contact.tangential_offset);
-        let dd = N::of(fast.contact.normal_offset);
-        let vn = N::of(fast.velocity.normal);
-        let vt = N::of(fast.velocity.tangential);
-        let w = N::of(fast.velocity.angular);
+    fn new(fast: &'a [BarrierScene; L]) -> Exact<N, Self> {
+        let m = N::of_lanes(|i| fast[i].body.mass());
+        let inertia = N::of_lanes(|i| fast[i].body.inertia());
+        let dc = N::of_lanes(|i| fast[i].contact.tangential_offset);
+        let dd = N::of_lanes(|i| fast[i].contact.normal_offset);
+        let vn = N::of_lanes(|i| fast[i].velocity.normal);
+        let vt = N::of_lanes(|i| fast[i].velocity.tangential);
+        let w = N::of_lanes(|i| fast[i].velocity.angular);
+        let central = zero_in_every_lane(fast, &dc, |s| s.contact.tangential_offset)?;
+        let level = zero_in_every_lane(fast, &dd, |s| s.contact.normal_offset)?;
         let vcn = dc.mul_add(&w, &vn);
         let vct = dd.neg().mul_add(&w, &vt);
         // k² = I/m, already rounded by the scene: f64 does not divide again.
-        let k2 = N::quotient_of(fast.body.inertia(), fast.body.mass(), fast.k2);
+        let k2 = N::quotient_of_lanes(|i| (fast[i].body.inertia(), fast[i].body.mass(), fast[i].k2));
         let dd2 = dd.mul(&dd);
         let k2_dc2 = dc.mul_add(&dc, &k2);
         let total = k2_dc2.add(&dd2);
-        Scene {
+        Ok(Scene {
             fast,
+            central,
+            level,
             reduced: Reduced {
                 s: vcn.neg(),
                 wtt: k2.add(&dd2),
@@ -76,13 +90,7 @@ impl<'a, N: Field> Scene<'a, N> {
             vn,
             vt,
             w,
-        }
-    }
-
-    /// Whether `d_c = 0` exactly: then `D = 1`, `S = k² + d_d²` and `Δn = q_n` in every answer.
-    #[inline(always)]
-    fn central(&self) -> bool {
-        self.fast.contact.tangential_offset == 0.0
+        })
     }
 
     /// `1 / S`, formed where it is read (the target law, the energy), not
@@ -96,10 +104,27 @@ impl<'a, N: Field> Scene<'a, N> {
     }
 }
 
-impl<N: Field> ContactSpace<N> for Scene<'_, N> {
+/// Whether the input `x` of every lane (`x(scene)`, `value` in the field)
+/// is exactly zero: lanes of which some are zero and some not are decided
+/// as a sign, which stops them (a field of one point never gets there).
+#[inline(always)]
+fn zero_in_every_lane<N: Field, const L: usize>(
+    scenes: &[BarrierScene; L],
+    value: &N,
+    x: impl Fn(&BarrierScene) -> f64,
+) -> Exact<N, bool> {
+    let zeros = scenes.iter().filter(|s| x(s) == 0.0).count();
+    if zeros == L || zeros == 0 {
+        Ok(zeros == L)
+    } else {
+        Ok(sign(value)? == Ordering::Equal)
+    }
+}
+
+impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     /// `ΔΩ`.
     type Turn = N;
-    type Outcome = BarrierOutcome;
+    type Outcome = [BarrierOutcome; L];
 
     #[inline(always)]
     fn reduced(&self) -> &Reduced<N> {
@@ -113,15 +138,17 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
         (self.dc.mul_add(&lever, &self.k2), lever)
     }
 
+    /// (In lanes, the first lane's refusal: lanes that refuse are solved
+    /// one by one.)
     fn no_impulse_solution(&self, mu: f64, law: Input) -> ImpactError {
-        self.fast.no_impulse_solution(mu, law)
+        self.fast[0].no_impulse_solution(mu, law)
     }
 
     /// `Δn = k² q_n / (D k²)`; for central contact `D k² = k²`, so `Δn = q_n`
     /// exactly (a tie stays decidable).
     #[inline(always)]
     fn ratio_normal(&self, qn: &N, per: &N) -> N {
-        if self.central() {
+        if self.central {
             qn.clone()
         } else {
             self.k2.mul(per)
@@ -142,7 +169,7 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
 
     #[inline(always)]
     fn target_normal(&self, qn: &N, sdn: &N, inv_det: &N) -> N {
-        if self.central() {
+        if self.central {
             qn.clone()
         } else {
             sdn.mul(inv_det)
@@ -165,16 +192,16 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
             input: law,
             impulse_ratio: mu.approx(),
             energy_loss: -0.5 * self.m.mul(work).approx(),
-            admissible: self.fast.admissible_interval(e.approx()),
+            admissible: self.fast[0].admissible_interval(e.approx()),
         }
     }
 
-    /// The outcome of one answer, each output rounded once.
+    /// The outcome of one answer, each output rounded once (lane by lane).
     /// `T_L = −½ m [Δn (v_cn + V_cn) + Δt (v_ct + V_ct)]` is the work of the
     /// impulses (Kelvin and Tait, as in the Appendix), which never subtracts
     /// two nearly equal energies.
     #[inline(always)]
-    fn assemble(&self, x: &Assembly<'_, N, N>, outcome: &mut BarrierOutcome) -> Exact<N, ()> {
+    fn assemble(&self, x: &Assembly<'_, N, N>, outcomes: &mut [BarrierOutcome; L]) -> Exact<N, ()> {
         let a = x.answer;
         let e = x.e;
         let w = self.w.add(&a.turn);
@@ -183,71 +210,134 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
         // the contact velocities, so a sticking or plastic zero stays structural and
         // is decided without a quotient. (Forming V_t = V_ct + d_d Ω always would
         // cancel two terms d_d²/k² times larger than V_t when d_d² ≫ k².)
-        let vn = if self.central() {
+        let vn = if self.central {
             a.un.clone()
         } else {
             self.vn.add(&a.dn)
         };
-        let vt = if self.fast.contact.normal_offset == 0.0 {
+        let vt = if self.level {
             a.ut.clone()
         } else {
             self.vt.add(&a.dt)
         };
-        let final_velocity = PlanarVelocity {
-            normal: out(Output::FinalNormalVelocity, &vn)?,
-            tangential: out(Output::FinalTangentialVelocity, &vt)?,
-            angular: out(Output::FinalAngularVelocity, &w)?,
-        };
-        let final_contact = ContactVelocity {
-            normal: out(Output::FinalNormalContactVelocity, &a.un)?,
-            tangential: out(Output::FinalTangentialContactVelocity, &a.ut)?,
-        };
-        let impulse = Impulse {
-            normal: out(Output::NormalImpulse, &self.m.mul(&a.dn))?,
-            tangential: out(Output::TangentialImpulse, &self.m.mul(&a.dt))?,
-        };
-        let impulse_ratio = out(Output::ImpulseRatio, x.mu)?;
-        let critical_impulse_ratio = critical_output(&x.critical)?;
+        // Each output of every lane, in the order a single solve tests them
+        // (the first refused is the one reported), then each lane's outcome.
+        let final_velocity = [
+            outs::<N, L>(Output::FinalNormalVelocity, &vn)?,
+            outs(Output::FinalTangentialVelocity, &vt)?,
+            outs(Output::FinalAngularVelocity, &w)?,
+        ];
+        let final_contact = [
+            outs::<N, L>(Output::FinalNormalContactVelocity, &a.un)?,
+            outs(Output::FinalTangentialContactVelocity, &a.ut)?,
+        ];
+        let impulse = [
+            outs::<N, L>(Output::NormalImpulse, &self.m.mul(&a.dn))?,
+            outs(Output::TangentialImpulse, &self.m.mul(&a.dt))?,
+        ];
+        let impulse_ratio = outs::<N, L>(Output::ImpulseRatio, x.mu)?;
+        let critical_impulse_ratio = critical_output::<N, L>(&x.critical)?;
         let energy = if x.outputs.energy {
-            Some(self.energy(&x.work)?)
+            Some(self.energy(&x.work).outputs::<L>()?)
         } else {
             None
         };
-        let restitution = out(Output::Restitution, e)?;
-        let fused = self.fast.contact_velocity;
+        let restitution = outs::<N, L>(Output::Restitution, e)?;
         // One FMA each: already the correctly rounded values, but a zero may
         // hide a value below the f64 range (or carry the sign of a −0 input).
-        let initial = ContactVelocity {
-            normal: if fused.normal == 0.0 {
-                out(Output::InitialNormalContactVelocity, &self.reduced.un)?
-            } else {
-                fused.normal
-            },
-            tangential: if fused.tangential == 0.0 {
-                out(Output::InitialTangentialContactVelocity, &self.reduced.ut)?
-            } else {
-                fused.tangential
-            },
+        let fused = self.fast.map(|scene| scene.contact_velocity);
+        let initial_normal = if fused.iter().any(|v| v.normal == 0.0) {
+            outs::<N, L>(Output::InitialNormalContactVelocity, &self.reduced.un)?
+        } else {
+            fused.map(|v| v.normal)
         };
-        *outcome = BarrierOutcome {
-            final_velocity,
-            contact_velocity: ContactVelocities {
-                initial,
-                r#final: final_contact,
-            },
-            impulse,
-            impulse_ratio,
-            critical_impulse_ratio,
-            restitution,
-            kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution),
-            regime: x.regime,
-            energy,
+        let initial_tangential = if fused.iter().any(|v| v.tangential == 0.0) {
+            outs::<N, L>(Output::InitialTangentialContactVelocity, &self.reduced.ut)?
+        } else {
+            fused.map(|v| v.tangential)
         };
+        for (lane, outcome) in outcomes.iter_mut().enumerate() {
+            let initial = ContactVelocity {
+                normal: if fused[lane].normal == 0.0 {
+                    initial_normal[lane]
+                } else {
+                    fused[lane].normal
+                },
+                tangential: if fused[lane].tangential == 0.0 {
+                    initial_tangential[lane]
+                } else {
+                    fused[lane].tangential
+                },
+            };
+            *outcome = BarrierOutcome {
+                final_velocity: PlanarVelocity {
+                    normal: final_velocity[0][lane],
+                    tangential: final_velocity[1][lane],
+                    angular: final_velocity[2][lane],
+                },
+                contact_velocity: ContactVelocities {
+                    initial,
+                    r#final: ContactVelocity {
+                        normal: final_contact[0][lane],
+                        tangential: final_contact[1][lane],
+                    },
+                },
+                impulse: Impulse {
+                    normal: impulse[0][lane],
+                    tangential: impulse[1][lane],
+                },
+                impulse_ratio: impulse_ratio[lane],
+                critical_impulse_ratio: critical_impulse_ratio[lane],
+                restitution: restitution[lane],
+                kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution[lane]),
+                regime: x.regime,
+                energy: energy.map(|energy| energy[lane]),
+            };
+        }
         Ok(())
     }
 }
 
-impl<N: Field> Scene<'_, N> {
+/// The energies of an answer in the field, before their rounding
+/// ([`Energies::output`]).
+struct Energies<N> {
+    initial: N,
+    loss: N,
+    /// `T_L / m`.
+    loss_per_mass: N,
+    /// `T_M / m`.
+    max_per_mass: N,
+    m: N,
+}
+
+impl<N: Field> Energies<N> {
+    /// Each of `L` lanes' energies, each rounded once.
+    #[inline(always)]
+    fn outputs<const L: usize>(&self) -> Exact<N, [PlanarEnergy; L]> {
+        let initial = outs::<N, L>(Output::InitialEnergy, &self.initial)?;
+        let r#final = outs::<N, L>(Output::FinalEnergy, &self.initial.sub(&self.loss))?;
+        let loss = outs::<N, L>(Output::EnergyLoss, &self.loss)?;
+        let max_loss = outs::<N, L>(Output::MaxEnergyLoss, &self.m.mul(&self.max_per_mass))?;
+        let normalized_loss = outs::<N, L>(
+            Output::NormalizedEnergyLoss,
+            &self.loss_per_mass.div(&self.max_per_mass),
+        )?;
+        let mut energies = [PlanarEnergy::default(); L];
+        for (lane, energy) in energies.iter_mut().enumerate() {
+            // The clamps only act on f64 roundings: the exact values satisfy them.
+            *energy = PlanarEnergy {
+                initial: initial[lane],
+                r#final: r#final[lane].max(0.0),
+                loss: loss[lane],
+                max_loss: max_loss[lane],
+                normalized_loss: normalized_loss[lane].min(1.0),
+            };
+        }
+        Ok(energies)
+    }
+}
+
+impl<N: Field, const L: usize> Scene<'_, N, L> {
     /// The initial energy `½ m (v_n² + v_t²) + ½ I ω²`, the loss from the work
     /// (Eq 8), the final energy as their difference (the work form equals
     /// `T_0 − T_f` exactly, by the moment equation), and
@@ -257,7 +347,7 @@ impl<N: Field> Scene<'_, N> {
     /// there, hence `T_L* = T_L / T_M ≤ 1`. Losses are formed per unit mass and
     /// multiplied by `m` last, so `T_L*` never divides two underflowed energies.
     #[inline(always)]
-    fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
+    fn energy(&self, work: &N) -> Energies<N> {
         let half_m = half::<N>().mul(&self.m);
         let half_i = half::<N>().mul(&self.inertia);
         let initial = half_m
@@ -275,14 +365,13 @@ impl<N: Field> Scene<'_, N> {
                 .mul(&inv_total)
                 .mul_add(&speed2, &lever.mul(&lever.mul(&inv_total))),
         );
-        // The clamps only act on f64 roundings: the exact values satisfy them.
-        Ok(PlanarEnergy {
-            initial: out(Output::InitialEnergy, &initial)?,
-            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?.max(0.0),
-            loss: out(Output::EnergyLoss, &loss)?,
-            max_loss: out(Output::MaxEnergyLoss, &self.m.mul(&max_per_mass))?,
-            normalized_loss: out(Output::NormalizedEnergyLoss, &loss_per_mass.div(&max_per_mass))?.min(1.0),
-        })
+        Energies {
+            initial,
+            loss,
+            loss_per_mass,
+            max_per_mass,
+            m: self.m.clone(),
+        }
     }
 }
 
@@ -295,7 +384,27 @@ pub(crate) fn rigid<N: Field>(
     outputs: Outputs,
     out: &mut BarrierOutcome,
 ) -> Exact<N, ()> {
-    under_law(&Scene::<N>::new(scene), law, outputs, out)
+    rigid_lanes::<N, 1>(
+        std::array::from_ref(scene),
+        law,
+        outputs,
+        std::array::from_mut(out),
+    )
+}
+
+/// The impacts of `L` rigid bodies under one law in a field of `L` lanes
+/// ([`crate::arith::Lanes`]), each in a validated scene: every outcome
+/// written, or an error (in lanes, that the points are to be solved one by
+/// one).
+#[inline(always)]
+pub(crate) fn rigid_lanes<N: Field, const L: usize>(
+    scenes: &[BarrierScene; L],
+    law: &Law,
+    outputs: Outputs,
+    out: &mut [BarrierOutcome; L],
+) -> Exact<N, ()> {
+    debug_assert_eq!(N::LANES, L);
+    under_law(&Scene::<N, L>::new(scenes)?, law, outputs, out)
 }
 
 /// The validated inputs of a point-mass impact: `m > 0`, `v_n < 0`, `e ∈ [0, 1]`.

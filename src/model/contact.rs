@@ -527,15 +527,18 @@ fn finish<N: Field, S: ContactSpace<N>>(
     )
 }
 
-/// `μ_c` as an output (`None` when not asked for), refused when its `Δn = 0`.
+/// `μ_c` as each of `L` lanes' output (`None` when not asked for), refused
+/// when its `Δn = 0`.
 #[inline(always)]
-pub(crate) fn critical_output<N: Field>(critical: &Option<Option<N>>) -> Exact<N, Option<f64>> {
+pub(crate) fn critical_output<N: Field, const L: usize>(
+    critical: &Option<Option<N>>,
+) -> Exact<N, [Option<f64>; L]> {
     match critical {
-        Some(Some(mu_c)) => Ok(Some(super::out(Output::CriticalImpulseRatio, mu_c)?)),
+        Some(Some(mu_c)) => Ok(super::outs::<N, L>(Output::CriticalImpulseRatio, mu_c)?.map(Some)),
         Some(None) => Err(ImpactError::OutputNotFinite {
             output: Output::CriticalImpulseRatio,
         }
         .into()),
-        None => Ok(None),
+        None => Ok([None; L]),
     }
 }

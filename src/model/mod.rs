@@ -70,6 +70,25 @@ pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
 #[inline(always)]
 pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
     let v = x.round_output(output.scale_kind()).map_err(Fail::Undecided)?;
+    finite_output(output, v)
+}
+
+/// [`out`] of each of `L` lanes ([`Field::lanes_output`]; `[out]` for a
+/// field of one point).
+#[inline(always)]
+pub(crate) fn outs<N: Field, const L: usize>(output: Output, x: &N) -> Exact<N, [f64; L]> {
+    let mut values = [0.0; L];
+    x.lanes_output(output.scale_kind(), &mut values)
+        .map_err(Fail::Undecided)?;
+    for v in values {
+        finite_output::<N::Undecided>(output, v)?;
+    }
+    Ok(values)
+}
+
+/// `v`, or the refusal of `output` beyond the f64 range.
+#[inline(always)]
+fn finite_output<U>(output: Output, v: f64) -> Result<f64, Fail<U>> {
     if v.is_finite() {
         Ok(v)
     } else {

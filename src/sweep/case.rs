@@ -101,6 +101,22 @@ impl<C: Case> SweepCase for CaseSweep<C> {
         self.solver.solve_into(point, out)
     }
 
+    #[inline(always)]
+    fn in_blocks(&self) -> bool {
+        self.solver.in_lanes()
+    }
+
+    #[inline(always)]
+    fn evaluate_block(
+        &self,
+        points: &[C],
+        outs: &mut [C::Outcome],
+        refusals: &mut Vec<(usize, ImpactError)>,
+    ) {
+        self.solver
+            .solve_block_into(points, outs, |k, e| refusals.push((k, e)))
+    }
+
     #[inline]
     fn read(&self, column: usize, outcomes: &[C::Outcome], cells: &mut [Cell]) {
         (self.readers[column])(outcomes, cells)

@@ -212,7 +212,24 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     pub(crate) fn value(&self) -> f64 {
         self.h
     }
+}
 
+impl Filtered<false, true> {
+    /// `(h, M, λ)`: the static bound's value whole (`super::Lanes` keeps
+    /// each part lane by lane).
+    #[inline(always)]
+    pub(super) fn parts(&self) -> (f64, f64, f64) {
+        (self.h, self.m, self.lambda)
+    }
+
+    /// The value of [`Filtered::parts`] `(h, m, lambda)`.
+    #[inline(always)]
+    pub(super) fn of_parts(h: f64, m: f64, lambda: f64) -> Self {
+        Filtered { h, m, lambda, e: 0.0 }
+    }
+}
+
+impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// The sum. `|x − h| ≤ E_x + E_y + u |h_x + h_y|` with
     /// `|h_x + h_y| ≤ M (1 + λu)`, `M = M_x + M_y`: `λ_s = max(λ_x, λ_y) + 1`.
     ///
@@ -460,20 +477,34 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// of the f64 range or `λ` past its limit [`Uncertain::Range`].
     #[inline(always)]
     pub(crate) fn output(&self, kind: ScaleKind) -> Result<f64, Uncertain> {
-        let v = self.h + 0.0;
-        // (Tested on the returned value, so that the caller's test of the
-        // same value, `crate::model::out`, is known true and folded away.)
-        if !v.is_finite() || self.lambda > LAMBDA_MAX {
-            return Err(Uncertain::Range);
-        }
-        // An exact zero or input has a zero bound; a NaN or infinite bound
-        // compares false.
-        let bound = self.error_bound();
-        if bound <= ACCEPTED_RELATIVE_BOUND * max(v.abs(), scale_of(kind)) {
+        self.output_against(scale_of(kind))
+    }
+
+    /// [`Filtered::output`] against the scale `scale` of its kind, given
+    /// (for one point of several evaluated together, `super::Lanes`).
+    #[inline(always)]
+    pub(crate) fn output_against(&self, scale: f64) -> Result<f64, Uncertain> {
+        let (v, accepted) = self.output_test(scale);
+        if accepted {
             Ok(v)
+        } else if !v.is_finite() || self.lambda > LAMBDA_MAX {
+            Err(Uncertain::Range)
         } else {
             Err(Uncertain::Inaccurate)
         }
+    }
+
+    /// [`Filtered::output_against`]'s value and whether it is accepted,
+    /// without a branch (so that lanes test theirs together).
+    #[inline(always)]
+    pub(crate) fn output_test(&self, scale: f64) -> (f64, bool) {
+        let v = self.h + 0.0;
+        // (Tested on the returned value, so that the caller's test of the
+        // same value, `crate::model::out`, is known true and folded away.)
+        // An exact zero or input has a zero bound; a NaN or infinite bound
+        // compares false.
+        let within = self.error_bound() <= ACCEPTED_RELATIVE_BOUND * max(v.abs(), scale);
+        (v, v.is_finite() & (self.lambda <= LAMBDA_MAX) & within)
     }
 
     /// `x √y` of unit class `kind` as f64 forms it, `h_x · √h_y`, for `y`
@@ -533,24 +564,37 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
         if running < fixed { running } else { fixed }
     }
 
+    /// Whether the bound decides the sign from the magnitude alone (`λ`
+    /// within its limit, `|h|` finite and above the bound), and whether
+    /// `h > 0`: [`Filtered::sign`]'s common path, without a branch (so that
+    /// lanes decide theirs together).
+    #[inline(always)]
+    pub(crate) fn clear_sign(&self) -> (bool, bool) {
+        let magnitude = self.h.abs();
+        // A finite |h| above the bound makes the bound finite too (a NaN
+        // compares false).
+        let clear =
+            (self.lambda <= LAMBDA_MAX) & (magnitude > self.error_bound()) & (magnitude < f64::INFINITY);
+        (clear, self.h > 0.0)
+    }
+
     /// The exact value's sign, unless the bound cannot decide it.
     #[inline(always)]
     pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
-        let bound = self.error_bound();
+        let (clear, positive) = self.clear_sign();
+        if clear {
+            return Ok(if positive {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            });
+        }
         // (λ is a sum and maximum of small constants, never a NaN.)
         if self.lambda > LAMBDA_MAX {
             return Err(Uncertain::Range);
         }
-        let magnitude = self.h.abs();
-        // A finite |h| above the bound makes the bound finite too (a NaN
-        // compares false): one test less on the common path.
-        if magnitude > bound && magnitude < f64::INFINITY {
-            Ok(if self.h > 0.0 {
-                Ordering::Greater
-            } else {
-                Ordering::Less
-            })
-        } else if !(self.h.is_finite() && bound.is_finite()) {
+        let bound = self.error_bound();
+        if !(self.h.is_finite() && bound.is_finite()) {
             Err(Uncertain::Range)
         } else if bound == 0.0 {
             // λ = 0 (an input) or M = 0 (an exact zero), or E = 0 without
