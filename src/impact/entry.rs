@@ -111,7 +111,7 @@ impl<C: Case> Solver<C> {
     /// Solves `impacts` into `outs` (of the same length), handing each
     /// refusal to `refused` with the point's position: each point's answer
     /// or refusal is what [`Solver::solve_into`] gives it, but in `fast` the
-    /// points go through the model [`LANES`] at a time where the case can
+    /// points go through the model four at a time where the case can
     /// ([`Case::evaluate_lanes`]), and one by one where it cannot (a
     /// refusal, a decision the lanes do not all take alike).
     #[inline(always)]

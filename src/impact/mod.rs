@@ -240,7 +240,7 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
         false
     }
     /// Evaluates `impacts`, points of one sweep whose [`Case::fix`] result is
-    /// `fixed`, together in `fast`'s first field ([`crate::arith::Lanes`]):
+    /// `fixed`, together in `fast`'s first field (`arith::Lanes`, four points):
     /// `true` when every one was answered there (each outcome its single
     /// solve, bit for bit), `false` when they are to be solved one by one
     /// (outcomes partly written). Called in `fast` alone, with every input in

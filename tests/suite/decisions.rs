@@ -206,9 +206,12 @@ fn fast_decides_every_planar_switch_exactly() {
                 tangential_restitution: e_t,
             },
         );
-        // The bilinear switch in f and in e_t.
+        // The bilinear switch in f and in e_t, and in the velocities (whose
+        // sweeps evaluate points in lanes, lanes that disagree included).
         check_switch(&bilinear, Input::Friction, 0.0, 20.0, &mut tally);
         check_switch(&bilinear, Input::TangentialRestitution, -1.0, 1.0, &mut tally);
+        check_switch(&bilinear, Input::AngularVelocity, -50.0, 50.0, &mut tally);
+        check_switch(&bilinear, Input::TangentialVelocity, -50.0, 50.0, &mut tally);
         let ratio = lamina(
             &mut rng,
             dyadic,
@@ -233,6 +236,7 @@ fn fast_decides_every_planar_switch_exactly() {
         check_switch(&kinetic, Input::ReboundImpulseRatio, 0.0, 1e3, &mut tally);
         check_switch(&kinetic, Input::ReboundImpulseRatio, -1e3, 0.0, &mut tally);
         check_switch(&kinetic, Input::ApproachImpulseRatio, -1e3, 1e3, &mut tally);
+        check_switch(&kinetic, Input::AngularVelocity, -50.0, 50.0, &mut tally);
     }
     eprintln!("planar: {tally:?}");
     assert!(tally.switches > 300, "{tally:?}");

@@ -212,24 +212,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     pub(crate) fn value(&self) -> f64 {
         self.h
     }
-}
 
-impl Filtered<false, true> {
-    /// `(h, M, λ)`: the static bound's value whole (`super::Lanes` keeps
-    /// each part lane by lane).
-    #[inline(always)]
-    pub(super) fn parts(&self) -> (f64, f64, f64) {
-        (self.h, self.m, self.lambda)
-    }
-
-    /// The value of [`Filtered::parts`] `(h, m, lambda)`.
-    #[inline(always)]
-    pub(super) fn of_parts(h: f64, m: f64, lambda: f64) -> Self {
-        Filtered { h, m, lambda, e: 0.0 }
-    }
-}
-
-impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// The sum. `|x − h| ≤ E_x + E_y + u |h_x + h_y|` with
     /// `|h_x + h_y| ≤ M (1 + λu)`, `M = M_x + M_y`: `λ_s = max(λ_x, λ_y) + 1`.
     ///
@@ -612,5 +595,6 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     }
 }
 
+mod parts;
 #[cfg(test)]
 mod tests;
