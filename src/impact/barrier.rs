@@ -396,7 +396,7 @@ mod tests {
 #[cfg(test)]
 mod lanes {
     use super::*;
-    use crate::impact::{Precision, solve};
+    use crate::impact::{Precision, Solver, solve};
 
     /// Figure 2's scene (`examples/figure2_coulomb_friction.json`) at `v_t`.
     fn figure2(vt: f64) -> BarrierImpact {
@@ -417,6 +417,69 @@ mod lanes {
                 friction: 0.123,
             },
         )
+    }
+
+    /// A block through the sweep's door: each point's answer or refusal is
+    /// its single solve's, in lanes and one by one alike (a point refused,
+    /// one outside the fast range, lanes that disagree, a tail of fewer
+    /// than four).
+    #[test]
+    fn a_block_answers_each_point_as_its_single_solve() {
+        let swept = [Input::TangentialVelocity, Input::NormalVelocity];
+        let solver = Solver::new(&figure2(0.0), &swept, Outputs::ALL, Precision::Fast);
+        assert!(solver.in_lanes());
+        let points: Vec<BarrierImpact> = [
+            (2.0, -1.0),
+            (2.5, -1.0),
+            (3.0, -1.0),
+            (3.5, -1.0),
+            (2.0, -1.0),
+            (2.5, 0.5),
+            (3.0, -1.0),
+            (1e300, -1.0),
+            (0.01, -1.0),
+            (0.02, -1.0),
+            (0.03, -2.0),
+            (0.04, -3.0),
+            (-4.0, -1.0),
+            (-4.5, -1.0),
+            (0.0, -1.0),
+        ]
+        .into_iter()
+        .map(|(vt, vn)| {
+            let mut p = figure2(vt);
+            p.velocity.normal = vn;
+            p
+        })
+        .collect();
+        let mut outs = vec![BarrierOutcome::default(); points.len()];
+        let mut refused = Vec::new();
+        solver.solve_block_into(&points, &mut outs, |k, e| refused.push((k, e)));
+        // Not approaching, and an energy beyond the f64 range.
+        let at: Vec<usize> = refused.iter().map(|(k, _)| *k).collect();
+        assert_eq!(at, [5, 7], "{refused:?}");
+        for (k, (point, outcome)) in points.iter().zip(&outs).enumerate() {
+            let single = solve(point, Outputs::ALL, Precision::Fast);
+            match refused.iter().find(|(i, _)| *i == k) {
+                Some((_, e)) => assert_eq!(Err(e.clone()), single, "{k}"),
+                None => assert_eq!(
+                    format!("{single:?}"),
+                    format!("{:?}", Ok::<_, ()>(outcome)),
+                    "{k}"
+                ),
+            }
+        }
+        // Lanes answer a law no axis changes, in `fast`, alone.
+        let law_swept = Solver::new(&figure2(0.0), &[Input::Friction], Outputs::ALL, Precision::Fast);
+        let exact = Solver::new(&figure2(0.0), &swept, Outputs::ALL, Precision::Exact);
+        let point = BarrierImpact::point_mass(1.0, -1.0, 0.5, 0.5);
+        let point_mass = Solver::new(
+            &point,
+            &[Input::TangentialVelocity],
+            Outputs::ALL,
+            Precision::Fast,
+        );
+        assert!(!law_swept.in_lanes() && !exact.in_lanes() && !point_mass.in_lanes());
     }
 
     /// Four points that take one path are answered together, each as its
