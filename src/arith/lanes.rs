@@ -191,6 +191,7 @@ impl<const L: usize> super::Field for Lanes<L> {
     /// single solve tests it ([`Filtered::output_test`]), together.
     #[inline(always)]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
+        const { assert!(L <= MAX_LANES, "more lanes than scales") };
         let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
         let mut accepted = true;
         for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {

@@ -14,9 +14,9 @@
 //! Impulses are carried per unit mass (`Δn = P_n / m`, `Δt = P_t / m`) and
 //! scaled by `k²` so that no `1/k²` can overflow.
 
-use super::contact::{Assembly, ContactSpace, Reduced, critical_output, under_law};
 use std::cmp::Ordering;
 
+use super::contact::{Assembly, ContactSpace, Reduced, critical_output, under_law};
 use super::{Exact, half, out, outs, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
