@@ -248,23 +248,18 @@ impl Case for BarrierImpact {
         let Some(Ok(law)) = &fixed.law else {
             return false;
         };
-        let scenes = match &fixed.scene {
-            Some(Ok(scene)) => [*scene; LANES],
-            Some(Err(_)) => return false,
-            None => {
-                let Ok(first) = impacts[0].scene() else {
-                    return false;
-                };
-                let mut scenes = [first; LANES];
-                for (scene, impact) in scenes.iter_mut().zip(impacts).skip(1) {
-                    match impact.scene() {
-                        Ok(s) => *scene = s,
-                        Err(_) => return false,
-                    }
-                }
-                scenes
-            }
+        // The law is fixed, so an axis sets a scene input: each point's
+        // scene is validated (a refusal is left to the single solve).
+        let Ok(first) = impacts[0].scene() else {
+            return false;
         };
+        let mut scenes = [first; LANES];
+        for (scene, impact) in scenes.iter_mut().zip(impacts).skip(1) {
+            match impact.scene() {
+                Ok(s) => *scene = s,
+                Err(_) => return false,
+            }
+        }
         let mut scales = [ErrorScales::UNPROMISED; LANES];
         for (scale, impact) in scales.iter_mut().zip(impacts) {
             *scale = impact.error_scales();
