@@ -97,17 +97,38 @@ pub struct BarrierScene {
     pub(crate) contact_velocity: ContactVelocity,
 }
 
-impl BarrierScene {
-    /// Builds the scene, checking that every number is finite and that the
-    /// contact approaches the barrier (`v_cn = v_n + d_c ω < 0`).
-    ///
-    /// `v_cn` and `v_ct` are each evaluated with one fused multiply-add, so
-    /// their signs (which decide approach and slip direction) are exact, but
-    /// for a `v_cn` below the f64 range, whose sign is then decided in exact
-    /// arithmetic.
-    pub fn new(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<Self> {
+/// A body at its contact, validated before any velocity: what the scenes of
+/// a sweep over velocities share, checked and formed once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Placed {
+    body: Body,
+    contact: Contact,
+    /// `k² = I / m`.
+    k2: f64,
+}
+
+impl Placed {
+    /// Checks that the offsets are finite.
+    pub(crate) fn new(body: Body, contact: Contact) -> Result<Self> {
         finite(Input::TangentialOffset, contact.tangential_offset)?;
         finite(Input::NormalOffset, contact.normal_offset)?;
+        Ok(Placed {
+            body,
+            contact,
+            k2: body.gyration_squared(),
+        })
+    }
+
+    /// The body.
+    pub(crate) fn body(&self) -> Body {
+        self.body
+    }
+
+    /// The scene of the body moving at `velocity`: [`BarrierScene::new`]'s
+    /// checks of the velocity.
+    #[inline(always)]
+    pub(crate) fn moving(&self, velocity: PlanarVelocity) -> Result<BarrierScene> {
+        let Placed { body, contact, k2 } = *self;
         finite(Input::NormalVelocity, velocity.normal)?;
         finite(Input::TangentialVelocity, velocity.tangential)?;
         finite(Input::AngularVelocity, velocity.angular)?;
@@ -131,13 +152,26 @@ impl BarrierScene {
             Output::InitialTangentialContactVelocity,
             contact_velocity.tangential,
         )?;
-        Ok(Self {
+        Ok(BarrierScene {
             body,
             contact,
             velocity,
-            k2: body.gyration_squared(),
+            k2,
             contact_velocity,
         })
+    }
+}
+
+impl BarrierScene {
+    /// Builds the scene, checking that every number is finite and that the
+    /// contact approaches the barrier (`v_cn = v_n + d_c ω < 0`).
+    ///
+    /// `v_cn` and `v_ct` are each evaluated with one fused multiply-add, so
+    /// their signs (which decide approach and slip direction) are exact, but
+    /// for a `v_cn` below the f64 range, whose sign is then decided in exact
+    /// arithmetic.
+    pub fn new(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<Self> {
+        Placed::new(body, contact)?.moving(velocity)
     }
 
     /// The body.

@@ -9,7 +9,7 @@ use crate::input::{BarrierBody, BarrierImpact, Law};
 use crate::model::Exact;
 use crate::model::barrier::{self as model, PointMass};
 use crate::outcome::{BarrierOutcome, Outputs};
-use crate::scene::{BarrierScene, Body, Contact, PlanarVelocity};
+use crate::scene::{BarrierScene, Body, Contact, Placed, PlanarVelocity};
 
 impl BarrierImpact {
     /// A rigid body's impact.
@@ -64,6 +64,43 @@ impl BarrierImpact {
         }
     }
 
+    /// The rigid body at its contact, validated as [`BarrierImpact::scene`]
+    /// validates it, with its lever arm for the scales.
+    fn placed(&self) -> Result<FixedBody> {
+        match self.body {
+            BarrierBody::Rigid {
+                mass,
+                inertia,
+                contact,
+            } => Ok(FixedBody {
+                placed: Placed::new(Body::new(mass, inertia)?, contact)?,
+                arm: lever_arm(&contact),
+            }),
+            BarrierBody::PointMass { .. } => Err(ImpactError::NeedsInertia {
+                input: Input::TangentialOffset,
+            }),
+        }
+    }
+
+    /// [`BarrierImpact::scene`], the body validated once where it is fixed.
+    #[inline(always)]
+    fn scene_with(&self, fixed: &Fixed) -> Result<BarrierScene> {
+        match &fixed.body {
+            Some(Ok(body)) => body.placed.moving(self.velocity),
+            Some(Err(e)) => Err(e.clone()),
+            None => self.scene(),
+        }
+    }
+
+    /// [`Case::error_scales`], the lever arm formed once where it is fixed.
+    #[inline(always)]
+    fn error_scales_with(&self, fixed: &Fixed) -> ErrorScales {
+        match &fixed.body {
+            Some(Ok(body)) => rigid_scales(body.placed.body().mass(), body.arm, &self.velocity),
+            _ => self.error_scales(),
+        }
+    }
+
     /// Checks a point mass: positive mass, no spin, an approaching normal
     /// velocity, a frictionless law with `e ∈ [0, 1]`.
     fn point_mass_inputs(&self, mass: f64) -> Result<PointMass> {
@@ -103,11 +140,35 @@ fn law_input(law: &Law) -> Input {
 }
 
 /// What a sweep's points share, validated once: a rigid body's scene when no
-/// axis changes it, and its law when no axis changes that.
+/// axis changes it, the body at its contact when no axis changes them, and
+/// its law when no axis changes that.
 #[derive(Debug, Clone)]
 pub struct Fixed {
     scene: Option<Result<BarrierScene>>,
+    body: Option<Result<FixedBody>>,
     law: Option<Result<Law>>,
+}
+
+/// A rigid body at its contact, validated, and its lever arm.
+#[derive(Debug, Clone, Copy)]
+struct FixedBody {
+    placed: Placed,
+    arm: f64,
+}
+
+/// The lever arm `√(d_c² + d_d²)` from the centre of mass to the contact.
+#[inline(always)]
+fn lever_arm(contact: &Contact) -> f64 {
+    let (c, d) = (contact.tangential_offset, contact.normal_offset);
+    c.mul_add(c, d * d).sqrt()
+}
+
+/// A rigid body's scales: its mass, velocity and spin, and its lever arm.
+#[inline(always)]
+fn rigid_scales(mass: f64, arm: f64, v: &PlanarVelocity) -> ErrorScales {
+    ScalesOf::new()
+        .body(mass, &[v.normal, v.tangential], &[v.angular], arm)
+        .scales()
 }
 
 /// A validated rigid-body impact, ready to run in any field.
@@ -189,17 +250,11 @@ impl Case for BarrierImpact {
     }
 
     fn error_scales(&self) -> ErrorScales {
-        let v = &self.velocity;
         let (mass, arm) = match self.body {
             BarrierBody::PointMass { mass } => (mass, 0.0),
-            BarrierBody::Rigid { mass, contact, .. } => {
-                let (c, d) = (contact.tangential_offset, contact.normal_offset);
-                (mass, c.mul_add(c, d * d).sqrt())
-            }
+            BarrierBody::Rigid { mass, contact, .. } => (mass, lever_arm(&contact)),
         };
-        ScalesOf::new()
-            .body(mass, &[v.normal, v.tangential], &[v.angular], arm)
-            .scales()
+        rigid_scales(mass, arm, &self.velocity)
     }
 
     fn describe(&self) -> &'static str {
@@ -210,23 +265,27 @@ impl Case for BarrierImpact {
     }
 
     fn fix(&self, swept: &[Input]) -> Self::Fixed {
-        const SCENE: [Input; 7] = [
+        const BODY: [Input; 4] = [
             Input::Mass,
             Input::Inertia,
             Input::TangentialOffset,
             Input::NormalOffset,
+        ];
+        const VELOCITY: [Input; 3] = [
             Input::NormalVelocity,
             Input::TangentialVelocity,
             Input::AngularVelocity,
         ];
         let rigid = matches!(self.body, BarrierBody::Rigid { .. });
         // Every other input of the case is the law's.
-        let (scene_swept, law_swept) = (
-            swept.iter().any(|i| SCENE.contains(i)),
-            swept.iter().any(|i| !SCENE.contains(i)),
+        let (body_swept, velocity_swept, law_swept) = (
+            swept.iter().any(|i| BODY.contains(i)),
+            swept.iter().any(|i| VELOCITY.contains(i)),
+            swept.iter().any(|i| !BODY.contains(i) && !VELOCITY.contains(i)),
         );
         Fixed {
-            scene: (rigid && !scene_swept).then(|| self.scene()),
+            scene: (rigid && !body_swept && !velocity_swept).then(|| self.scene()),
+            body: (rigid && !body_swept).then(|| self.placed()),
             law: (rigid && !law_swept).then(|| self.law.validate()),
         }
     }
@@ -250,19 +309,19 @@ impl Case for BarrierImpact {
         };
         // The law is fixed, so an axis sets a scene input: each point's
         // scene is validated (a refusal is left to the single solve).
-        let Ok(first) = impacts[0].scene() else {
+        let Ok(first) = impacts[0].scene_with(fixed) else {
             return false;
         };
         let mut scenes = [first; LANES];
         for (scene, impact) in scenes.iter_mut().zip(impacts).skip(1) {
-            match impact.scene() {
+            match impact.scene_with(fixed) {
                 Ok(s) => *scene = s,
                 Err(_) => return false,
             }
         }
         let mut scales = [ErrorScales::UNPROMISED; LANES];
         for (scale, impact) in scales.iter_mut().zip(impacts) {
-            *scale = impact.error_scales();
+            *scale = impact.error_scales_with(fixed);
         }
         crate::arith::measure_lanes_against(&scales);
         // A compiled body of its own (as `fast`'s single solve has,
@@ -305,7 +364,7 @@ impl Case for BarrierImpact {
                 let scene = match &fixed.scene {
                     Some(Ok(scene)) => scene,
                     Some(Err(e)) => return refused(e.clone()),
-                    None => match self.scene() {
+                    None => match self.scene_with(fixed) {
                         Ok(scene) => {
                             built = scene;
                             &built
@@ -321,7 +380,7 @@ impl Case for BarrierImpact {
                     Ok(law) => evaluate(
                         arithmetic,
                         in_range,
-                        || self.error_scales(),
+                        || self.error_scales_with(fixed),
                         StaticBounds::Tight,
                         Rigid { scene, law, outputs },
                         out,

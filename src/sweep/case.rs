@@ -127,6 +127,7 @@ impl<C: Case> SweepCase for CaseSweep<C> {
 mod tests {
     use super::*;
     use crate::impact::{BarrierImpact, Law, TorsionalImpact, solve};
+    use crate::input::BarrierBody;
     use crate::scene::{Contact, PlanarVelocity};
     use crate::sweep::{Axis, AxisValues, Combine, Sweep};
 
@@ -207,6 +208,57 @@ mod tests {
                 assert_eq!(answer, per_point.solve(&p));
                 assert_eq!(answer, solve(&p, fixed_law.outputs(), Precision::Fast));
                 assert_eq!(answer.is_ok(), et <= 1.0, "{answer:?}");
+            }
+        }
+    }
+
+    /// A body no axis changes is validated once: where it is invalid, every
+    /// point is refused as its single solve refuses it, with a fixed law (in
+    /// lanes) and with a swept one.
+    #[test]
+    fn a_fixed_invalid_body_is_refused_as_single_solves_refuse_it() {
+        let velocities = [-3.0, 0.0, 1.0, 2.0, 2.5, 4.0, 5.0, 6.0, 7.0];
+        let columns = vec![Output::FinalTangentialContactVelocity];
+        let mut invalid = [maw(0.123); 4];
+        if let BarrierBody::Rigid { mass, inertia, .. } = &mut invalid[0].body {
+            *mass = 0.0;
+            *inertia = f64::NAN;
+        }
+        if let BarrierBody::Rigid { inertia, .. } = &mut invalid[1].body {
+            *inertia = -1.0;
+        }
+        if let BarrierBody::Rigid { contact, .. } = &mut invalid[2].body {
+            contact.normal_offset = f64::INFINITY;
+        }
+        // The last is valid: its points are answered, by lanes too.
+        for base in invalid {
+            for swept in [
+                vec![Input::TangentialVelocity],
+                vec![Input::TangentialVelocity, Input::Friction],
+            ] {
+                for precision in [Precision::Fast, Precision::Exact] {
+                    let case = CaseSweep::new(&base, &swept, columns.clone(), precision).unwrap();
+                    let axes = vec![Axis {
+                        param: Input::TangentialVelocity,
+                        values: AxisValues::List(velocities.to_vec()),
+                    }];
+                    let sweep = Sweep::new(case, base, axes, Combine::Product, 100).unwrap();
+                    let mut k = 0;
+                    sweep.for_each_in(0..sweep.points(), |row| {
+                        let mut point = base;
+                        point.velocity.tangential = velocities[k];
+                        let single = solve(&point, Outputs::MINIMAL, precision);
+                        match (row.outcome, single) {
+                            (Ok(&[Cell::Number(x)]), Ok(one)) => {
+                                assert_eq!(x.to_bits(), one.contact_velocity.r#final.tangential.to_bits())
+                            }
+                            (Err(e), Err(one)) => assert_eq!(*e, one),
+                            (row, single) => panic!("{row:?} against {single:?}"),
+                        }
+                        k += 1;
+                    });
+                    assert_eq!(k, velocities.len());
+                }
             }
         }
     }

@@ -46,18 +46,22 @@ impl AxisValues {
     /// as numpy's linspace, so `linspace(−1, 5, 7)` is exactly `−1, 0, …, 5`; when
     /// `stop − start` overflows, `start (1 − s) + stop s` with `s = i/(count − 1)`.
     pub fn value(&self, i: u64) -> f64 {
+        self.sampler().value(i)
+    }
+
+    /// The values ready to be read one by one, each spacing's step formed once.
+    pub(crate) fn sampler(&self) -> Sampler<'_> {
         match self {
-            AxisValues::List(v) => v[i as usize],
-            AxisValues::Linspace { start, stop, count } => interpolate(*start, *stop, i, *count),
-            AxisValues::Logspace { start, stop, count } => {
-                if i == 0 {
-                    *start
-                } else if i + 1 == *count {
-                    *stop
-                } else {
-                    interpolate(start.ln(), stop.ln(), i, *count).exp()
-                }
+            AxisValues::List(v) => Sampler::List(v),
+            AxisValues::Linspace { start, stop, count } => {
+                Sampler::Linear(Interpolation::new(*start, *stop, *count))
             }
+            AxisValues::Logspace { start, stop, count } => Sampler::Logarithmic {
+                start: *start,
+                stop: *stop,
+                count: *count,
+                logarithm: Interpolation::new(start.ln(), stop.ln(), *count),
+            },
         }
     }
 
@@ -88,20 +92,89 @@ impl AxisValues {
     }
 }
 
-fn interpolate(start: f64, stop: f64, i: u64, count: u64) -> f64 {
-    if i == 0 {
-        return start;
+/// One axis's values as [`AxisValues::value`] gives them, read by index.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Sampler<'a> {
+    List(&'a [f64]),
+    Linear(Interpolation),
+    /// Interpolated in logarithm, its ends exact.
+    Logarithmic {
+        start: f64,
+        stop: f64,
+        count: u64,
+        logarithm: Interpolation,
+    },
+}
+
+impl Sampler<'_> {
+    /// The `i`-th value (`i < len`).
+    #[inline(always)]
+    pub(crate) fn value(&self, i: u64) -> f64 {
+        match self {
+            Sampler::List(v) => v[i as usize],
+            Sampler::Linear(linear) => linear.value(i),
+            Sampler::Logarithmic {
+                start,
+                stop,
+                count,
+                logarithm,
+            } => {
+                if i == 0 {
+                    *start
+                } else if i + 1 == *count {
+                    *stop
+                } else {
+                    logarithm.value(i).exp()
+                }
+            }
+        }
     }
-    if i + 1 == count {
-        return stop;
+}
+
+/// `count` values evenly spaced from `start` to `stop`, its step formed once.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Interpolation {
+    start: f64,
+    stop: f64,
+    count: u64,
+    intervals: f64,
+    /// `(stop − start)/(count − 1)`, not finite where `stop − start` overflows.
+    step: f64,
+}
+
+impl Interpolation {
+    fn new(start: f64, stop: f64, count: u64) -> Self {
+        let intervals = count.saturating_sub(1) as f64;
+        Interpolation {
+            start,
+            stop,
+            count,
+            intervals,
+            step: (stop - start) / intervals,
+        }
     }
-    let intervals = (count - 1) as f64;
-    let step = (stop - start) / intervals;
-    if step.is_finite() {
-        return (i as f64).mul_add(step, start);
+
+    #[inline(always)]
+    fn value(&self, i: u64) -> f64 {
+        let Interpolation {
+            start,
+            stop,
+            count,
+            intervals,
+            step,
+        } = *self;
+        if i == 0 {
+            return start;
+        }
+        if i + 1 == count {
+            return stop;
+        }
+        if step.is_finite() {
+            return (i as f64).mul_add(step, start);
+        }
+        let s = i as f64 / intervals;
+        start.mul_add(1.0 - s, stop * s)
     }
-    let s = i as f64 / intervals;
-    start.mul_add(1.0 - s, stop * s)
 }
 
 /// How the axes combine into points.

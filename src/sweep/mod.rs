@@ -239,6 +239,7 @@ impl<C: SweepCase> Sweep<C> {
         }
         let (axes, columns) = (self.axes.len(), self.case.columns());
         let lens = self.axes.iter().map(|a| a.values.len()).collect();
+        let samplers: Vec<_> = self.axes.iter().map(|a| a.values.sampler()).collect();
         let mut odometer = Odometer::at(lens, self.combine, start);
         // One block's points: axis values and digits point by point, the
         // points themselves where they are evaluated together, outcomes,
@@ -263,15 +264,28 @@ impl<C: SweepCase> Sweep<C> {
             let n = (end - block_start).min(BLOCK as u64) as usize;
             refusals.clear();
             for k in 0..n {
-                for (axis, (a, &digit)) in self.axes.iter().zip(odometer.digits()).enumerate().skip(changed) {
-                    let v = a.values.value(digit);
+                let axes_here = self.axes.iter().zip(&samplers).zip(odometer.digits());
+                for (axis, ((a, sampler), &digit)) in axes_here.enumerate().skip(changed) {
+                    let v = sampler.value(digit);
                     current[axis] = v;
                     C::set(&mut point, a.param, v);
                 }
-                values[k * axes..(k + 1) * axes].copy_from_slice(&current);
-                digits[k * axes..(k + 1) * axes].copy_from_slice(odometer.digits());
+                if axes == 1 {
+                    // Most sweeps have one axis: copied as one value (a
+                    // copy of a slice is a call to `memcpy`).
+                    values[k] = current[0];
+                    digits[k] = odometer.digits()[0];
+                } else {
+                    values[k * axes..(k + 1) * axes].copy_from_slice(&current);
+                    digits[k * axes..(k + 1) * axes].copy_from_slice(odometer.digits());
+                }
                 if in_blocks {
-                    points[k] = point;
+                    // Each point set aside is the base with every swept
+                    // input set: only those are written (not a copy of
+                    // the whole point).
+                    for (a, &v) in self.axes.iter().zip(&current) {
+                        C::set(&mut points[k], a.param, v);
+                    }
                 } else if let Err(e) = self.case.evaluate(&point, &mut outcomes[k]) {
                     refusals.push((k, e));
                 }

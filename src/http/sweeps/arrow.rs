@@ -138,10 +138,9 @@ impl ArrowLayout {
             }
             let (mut number, mut text) = (self.axes, 0);
             for (i, &is_text) in self.text.iter().enumerate() {
-                let cells = block.column(i).iter().zip(answered);
                 if is_text {
                     let (keys, valid) = &mut chunk.keys[text];
-                    for (cell, &ok) in cells {
+                    for (cell, &ok) in block.column(i).iter().zip(answered) {
                         match cell {
                             Cell::Text(name) if ok => {
                                 keys.push(caches[text].get(&self.names[text], name));
@@ -156,32 +155,45 @@ impl ArrowLayout {
                     text += 1;
                 } else {
                     let (values, valid) = &mut chunk.numbers[number];
-                    for (cell, &ok) in cells {
-                        match *cell {
-                            Cell::Number(x) if ok && x.is_finite() => {
-                                values.push(x);
-                                valid.append(true);
+                    let start = values.len();
+                    values.extend(block.column(i).iter().map(|cell| match *cell {
+                        Cell::Number(x) => x,
+                        Cell::Text(_) => f64::NAN,
+                    }));
+                    // Every point answered with a finite value (the common
+                    // block) in one step; else a null, with a zero, at each
+                    // other.
+                    let block_values = &mut values[start..];
+                    if block.refusals().is_empty() && block_values.iter().all(|x| x.is_finite()) {
+                        valid.append_n_non_nulls(block_values.len());
+                    } else {
+                        for (x, &ok) in block_values.iter_mut().zip(answered) {
+                            let shown = ok && x.is_finite();
+                            if !shown {
+                                *x = 0.0;
                             }
-                            _ => {
-                                values.push(0.0);
-                                valid.append(false);
-                            }
+                            valid.append(shown);
                         }
                     }
                     number += 1;
                 }
             }
             let (keys, valid) = &mut chunk.keys[texts];
-            let mut refused = block.refusals().iter().peekable();
-            for k in 0..block.len() {
-                match refused.next_if(|(i, _)| *i == k) {
-                    Some((_, e)) => {
-                        keys.push(caches[texts].get(&self.names[texts], e.title()));
-                        valid.append(true);
-                    }
-                    None => {
-                        keys.push(0);
-                        valid.append(false);
+            if block.refusals().is_empty() {
+                keys.resize(keys.len() + block.len(), 0);
+                valid.append_n_nulls(block.len());
+            } else {
+                let mut refused = block.refusals().iter().peekable();
+                for k in 0..block.len() {
+                    match refused.next_if(|(i, _)| *i == k) {
+                        Some((_, e)) => {
+                            keys.push(caches[texts].get(&self.names[texts], e.title()));
+                            valid.append(true);
+                        }
+                        None => {
+                            keys.push(0);
+                            valid.append(false);
+                        }
                     }
                 }
             }
@@ -260,7 +272,11 @@ impl Sink<ArrowChunk> for ArrowSink {
         let batch = self.batch(chunk);
         let writer = self.writer.as_mut().expect("the header is written first");
         writer.write(&batch).expect("an IPC record batch");
-        std::mem::take(writer.get_mut())
+        // The next batch is about as large: its bytes are written into a
+        // buffer of this one's size, not one grown (and copied) step by step.
+        let bytes = writer.get_mut();
+        let next = Vec::with_capacity(bytes.len());
+        std::mem::replace(bytes, next)
     }
 
     fn trailer(&mut self) -> Vec<u8> {
