@@ -128,37 +128,28 @@ impl Placed {
     /// checks of the velocity.
     #[inline(always)]
     pub(crate) fn moving(&self, velocity: PlanarVelocity) -> Result<BarrierScene> {
+        let scene = self.moving_unchecked(velocity);
+        scene.check_velocity()?;
+        Ok(scene)
+    }
+
+    /// The scene of the body moving at `velocity`, its velocity not yet
+    /// checked ([`BarrierScene::check_velocity`]).
+    #[inline(always)]
+    pub(crate) fn moving_unchecked(&self, velocity: PlanarVelocity) -> BarrierScene {
         let Placed { body, contact, k2 } = *self;
-        finite(Input::NormalVelocity, velocity.normal)?;
-        finite(Input::TangentialVelocity, velocity.tangential)?;
-        finite(Input::AngularVelocity, velocity.angular)?;
-        let contact_velocity = ContactVelocity {
-            normal: contact
-                .tangential_offset
-                .mul_add(velocity.angular, velocity.normal),
-            tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
-        };
-        // A v_cn beyond the f64 range still has its sign: separating is decided first.
-        let approaching = contact_velocity.normal < 0.0
-            || (contact_velocity.normal == 0.0 && below_range_approaching(contact, velocity));
-        if !approaching {
-            return Err(ImpactError::NotApproaching {
-                input: Input::NormalVelocity,
-                normal_contact_velocity: contact_velocity.normal + 0.0,
-            });
-        }
-        finite_output(Output::InitialNormalContactVelocity, contact_velocity.normal)?;
-        finite_output(
-            Output::InitialTangentialContactVelocity,
-            contact_velocity.tangential,
-        )?;
-        Ok(BarrierScene {
+        BarrierScene {
             body,
             contact,
             velocity,
             k2,
-            contact_velocity,
-        })
+            contact_velocity: ContactVelocity {
+                normal: contact
+                    .tangential_offset
+                    .mul_add(velocity.angular, velocity.normal),
+                tangential: (-contact.normal_offset).mul_add(velocity.angular, velocity.tangential),
+            },
+        }
     }
 }
 
@@ -172,6 +163,31 @@ impl BarrierScene {
     /// arithmetic.
     pub fn new(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<Self> {
         Placed::new(body, contact)?.moving(velocity)
+    }
+
+    /// Checks that the velocities are finite and that the contact
+    /// approaches, and that its contact velocities are in the f64 range.
+    #[inline(always)]
+    pub(crate) fn check_velocity(&self) -> Result<()> {
+        let (velocity, contact_velocity) = (self.velocity, self.contact_velocity);
+        finite(Input::NormalVelocity, velocity.normal)?;
+        finite(Input::TangentialVelocity, velocity.tangential)?;
+        finite(Input::AngularVelocity, velocity.angular)?;
+        // A v_cn beyond the f64 range still has its sign: separating is decided first.
+        let approaching = contact_velocity.normal < 0.0
+            || (contact_velocity.normal == 0.0 && below_range_approaching(self.contact, velocity));
+        if !approaching {
+            return Err(ImpactError::NotApproaching {
+                input: Input::NormalVelocity,
+                normal_contact_velocity: contact_velocity.normal + 0.0,
+            });
+        }
+        finite_output(Output::InitialNormalContactVelocity, contact_velocity.normal)?;
+        finite_output(
+            Output::InitialTangentialContactVelocity,
+            contact_velocity.tangential,
+        )?;
+        Ok(())
     }
 
     /// The body.

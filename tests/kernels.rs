@@ -74,6 +74,9 @@ fn requests() -> Vec<Value> {
                    "axes": [lin("/velocity/spin", -100.0, 100.0, 801)]}),
             json!({"case": "planar", "base": planar["base"], "precision": precision,
                    "axes": [lin("/bodies/1/velocity/y", -30.0, 30.0, 61), lin("/friction", 0.0, 1.0, 11)]}),
+            // No law on an axis: in `fast`, in lanes.
+            json!({"case": "planar", "base": planar["base"], "precision": precision,
+                   "axes": [lin("/bodies/1/velocity/y", -30.0, 30.0, 61), lin("/bodies/0/angular_velocity", -3.0, 3.0, 7)]}),
             json!({"case": "spatial", "base": spatial, "precision": precision,
                    "axes": [lin("/bodies/0/angular_velocity/x", -600.0, 600.0, 41),
                             lin("/bodies/0/velocity/y", -10.0, 10.0, 11)]}),

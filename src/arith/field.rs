@@ -78,6 +78,19 @@ pub(crate) trait Field: Clone {
         out[0] = self.round_output(kind)?;
         Ok(())
     }
+    /// Every lane's output `x √y` of unit class `kind`, as
+    /// [`Field::lanes_output`] (`out[0]` is
+    /// [`Field::round_output_times_sqrt`] in a field of one point).
+    #[inline(always)]
+    fn lanes_output_times_sqrt(
+        &self,
+        y: &Self,
+        kind: ScaleKind,
+        out: &mut [f64],
+    ) -> Result<(), Self::Undecided> {
+        out[0] = self.round_output_times_sqrt(y, kind)?;
+        Ok(())
+    }
     /// A nearby f64 for diagnostics (error payloads), never for answers.
     fn approx(&self) -> f64;
     /// `x √y` (`y ≥ 0`) correctly rounded: the exact fields decide it from

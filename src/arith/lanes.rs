@@ -201,6 +201,21 @@ impl<const L: usize> super::Field for Lanes<L> {
         }
         if accepted { Ok(()) } else { Err(Diverged) }
     }
+    /// Every lane's output `x √y`, each as its single solve tests it
+    /// ([`Filtered::output_times_sqrt_against`]).
+    #[inline(always)]
+    fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
+        const { assert!(L <= MAX_LANES, "more lanes than scales") };
+        let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
+        let mut accepted = true;
+        for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {
+            match self.lane(i).output_times_sqrt_against(&y.lane(i), scale) {
+                Ok(v) => *value = v,
+                Err(_) => accepted = false,
+            }
+        }
+        if accepted { Ok(()) } else { Err(Diverged) }
+    }
     fn approx(&self) -> f64 {
         self.h[0]
     }

@@ -6,13 +6,13 @@
 use std::fmt;
 
 use super::approach::{approach_bound, approaches};
-use super::{Arithmetic, Case, Model, Stage, StaticBounds, TightFast, evaluate_contact};
+use super::{Arithmetic, Case, LANES, Model, Stage, StaticBounds, TightFast, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::{Compensated, Field, Fraction, Radical};
+use crate::arith::{Compensated, Field, Fraction, Lanes, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::input::{BodiesImpact, Lamina, Law};
 use crate::model::Exact;
-use crate::model::bodies::{Geometry, approach, bodies};
+use crate::model::bodies::{Geometry, approach, bodies, bodies_lanes};
 use crate::outcome::{BODY_OUTPUTS, BodiesOutcome, Outputs};
 
 /// The inputs of each body, in request order: parts of the case's declaration.
@@ -113,11 +113,14 @@ impl BodiesImpact {
 }
 
 /// What a sweep validates once: the contact's geometry, when no axis
-/// changes it.
+/// changes it (in `fast`'s first field, the compensated stage's, and lanes
+/// of `fast`'s first field), and the law, when no axis changes it.
 #[derive(Clone)]
 pub struct Fixed {
     /// Boxed: a sweep holds one.
     geometry: Option<Box<Prepared>>,
+    lanes: Option<Box<Geometry<Lanes<LANES>>>>,
+    law: Option<Result<Law>>,
 }
 
 /// The geometry a sweep forms once.
@@ -127,6 +130,7 @@ impl fmt::Debug for Fixed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Fixed")
             .field("geometry", &self.geometry.as_ref().map(|_| "formed"))
+            .field("law", &self.law)
             .finish()
     }
 }
@@ -140,6 +144,15 @@ impl BodiesImpact {
             .iter()
             .flat_map(|inputs| inputs[..4].iter().copied())
             .chain([Input::ContactX, Input::ContactY, Input::NormalX, Input::NormalY])
+    }
+
+    /// Whether the bodies and the contact are in this case's fast range.
+    #[inline(always)]
+    fn in_this_range(&self) -> bool {
+        all_in_range(&self.a.values())
+            && self.b.is_none_or(|b| all_in_range(&b.values()))
+            && all_in_range(&self.contact.point)
+            && all_in_range(&self.contact.normal)
     }
 
     /// The geometry in both fields if the inputs it reads are valid and in
@@ -249,11 +262,56 @@ impl Case for BodiesImpact {
     fn fix(&self, swept: &[Input]) -> Fixed {
         // A single solve (nothing swept) forms its geometry in the field it runs in.
         let geometry_swept = self.geometry_inputs().any(|i| swept.contains(&i));
+        let geometry = (!swept.is_empty() && !geometry_swept)
+            .then(|| self.prepared())
+            .flatten();
+        let law_swept = swept.iter().any(|&i| self.law.clone().input_mut(i).is_some());
         Fixed {
-            geometry: (!swept.is_empty() && !geometry_swept)
-                .then(|| self.prepared())
-                .flatten(),
+            // Formed as the others are (`Geometry::new` of the same
+            // inputs), so each lane is `fast`'s first field's geometry.
+            lanes: geometry
+                .as_ref()
+                .map(|_| Box::new(crate::kernels::run(|| Geometry::new(self)))),
+            geometry,
+            law: (!swept.is_empty() && !law_swept).then(|| self.law.validate()),
         }
+    }
+
+    /// A geometry and a law no axis changes.
+    #[inline(always)]
+    fn in_lanes(fixed: &Fixed) -> bool {
+        fixed.lanes.is_some() && matches!(fixed.law, Some(Ok(_)))
+    }
+
+    /// The points of a geometry and a law no axis changes, in lanes: each
+    /// validated as its single solve validates it, its approach decided in
+    /// f64 and every input in this case's fast range (else the points are
+    /// solved one by one).
+    #[inline(always)]
+    fn evaluate_lanes(
+        impacts: &[Self; LANES],
+        fixed: &Fixed,
+        outputs: Outputs,
+        out: &mut [BodiesOutcome; LANES],
+    ) -> bool {
+        let (Some(geometry), Some(Ok(law))) = (&fixed.lanes, &fixed.law) else {
+            return false;
+        };
+        let mut scales = [ErrorScales::UNPROMISED; LANES];
+        for (scale, impact) in scales.iter_mut().zip(impacts) {
+            if !matches!(impact.validate(), Ok((_, true))) || !impact.in_this_range() {
+                return false;
+            }
+            *scale = impact.error_scales();
+        }
+        crate::arith::measure_lanes_against(&scales);
+        // A compiled body of its own, as the one lamina's lanes
+        // (`impact::barrier`).
+        crate::kernels::run(
+            #[inline(always)]
+            || bodies_lanes::<Lanes<LANES>, LANES>(impacts, law, geometry, outputs, out),
+        )
+        .is_ok()
     }
 
     #[inline(always)]
@@ -269,11 +327,7 @@ impl Case for BodiesImpact {
         match self.validate() {
             Ok((law, certain)) => {
                 let impact = BodiesImpact { law, ..*self };
-                let in_range = in_range
-                    && all_in_range(&self.a.values())
-                    && self.b.is_none_or(|b| all_in_range(&b.values()))
-                    && all_in_range(&self.contact.point)
-                    && all_in_range(&self.contact.normal);
+                let in_range = in_range && self.in_this_range();
                 evaluate_contact(
                     arithmetic,
                     in_range,
@@ -375,5 +429,106 @@ mod tests {
         let barrier = BodiesImpact { b: None, ..impact };
         assert!(BODY_INPUTS[1].iter().all(|&i| barrier.input(i).is_none()));
         assert_eq!(barrier.reads().len(), 7 + 4 + 2);
+    }
+}
+
+#[cfg(test)]
+mod lanes {
+    use super::*;
+    use crate::impact::testing::one_law_of_each_kind;
+    use crate::impact::{Precision, Solver, solve};
+    use crate::input::PlanarContact;
+
+    /// The two cars of `examples/planar_car_to_car_sweep.json` (or car A
+    /// against a barrier), car B moving at `vy`, under `law`.
+    fn cars(vy: f64, with_b: bool, law: Law) -> BodiesImpact {
+        let car = |mass: f64, inertia: f64, position: [f64; 2], velocity: [f64; 2]| Lamina {
+            mass,
+            inertia,
+            position,
+            velocity,
+            angular_velocity: 0.0,
+        };
+        BodiesImpact {
+            a: car(1500.0, 2500.0, [0.0, 0.0], [15.0, 0.0]),
+            b: with_b.then(|| car(1200.0, 1800.0, [3.0, -1.5], [0.0, vy])),
+            contact: PlanarContact {
+                point: [2.2, -0.6],
+                normal: [-1.0, 0.0],
+            },
+            law,
+        }
+    }
+
+    /// Blocks through the sweep's door, under a law of each kind, with and
+    /// without body B: each point's answer or refusal is its single solve's,
+    /// whether in lanes (most points) or one by one (lanes that disagree, a
+    /// refusal, a tail).
+    #[test]
+    fn a_block_answers_each_point_as_its_single_solve() {
+        let (mut together, mut points_seen) = (0, 0);
+        for law in one_law_of_each_kind() {
+            for with_b in [true, false] {
+                let base = cars(12.0, with_b, law);
+                let swept = [Input::VelocityBY, Input::VelocityAX, Input::AngularVelocityA];
+                let solver = Solver::new(&base, &swept, Outputs::ALL, Precision::Fast);
+                assert!(solver.in_lanes());
+                let points: Vec<BodiesImpact> = (0..23)
+                    .map(|k| {
+                        let mut p = cars(-30.0 + 2.75 * k as f64, with_b, law);
+                        p.a.velocity[0] = if k == 9 { -3.0 } else { 15.0 - 0.5 * k as f64 };
+                        p.a.angular_velocity = if k == 14 { 1e300 } else { 0.0 };
+                        p
+                    })
+                    .collect();
+                let mut outs = vec![BodiesOutcome::default(); points.len()];
+                let mut refused = Vec::new();
+                solver.solve_block_into(&points, &mut outs, |k, e| refused.push((k, e)));
+                // Point 9 separates; point 14's spin leaves the f64 range.
+                let at: Vec<usize> = refused.iter().map(|(k, _)| *k).collect();
+                assert!(at.starts_with(&[9, 14]), "{refused:?}");
+                for (k, (point, outcome)) in points.iter().zip(&outs).enumerate() {
+                    let single = solve(point, Outputs::ALL, Precision::Fast);
+                    match refused.iter().find(|(i, _)| *i == k) {
+                        Some((_, e)) => assert_eq!(Err(e.clone()), single, "{k}"),
+                        None => assert_eq!(
+                            format!("{single:?}"),
+                            format!("{:?}", Ok::<_, ()>(outcome)),
+                            "{k} under {law:?}"
+                        ),
+                    }
+                }
+                // How many groups of four the lanes answered together.
+                let fixed = base.fix(&swept);
+                for group in points.chunks_exact(LANES) {
+                    let group: &[BodiesImpact; LANES] = group.try_into().expect("four");
+                    let mut out = [BodiesOutcome::default(); LANES];
+                    if BodiesImpact::evaluate_lanes(group, &fixed, Outputs::ALL, &mut out) {
+                        together += 1;
+                        for (impact, outcome) in group.iter().zip(&out) {
+                            let single = solve(impact, Outputs::ALL, Precision::Fast);
+                            assert_eq!(format!("{single:?}"), format!("{:?}", Ok::<_, ()>(outcome)));
+                        }
+                    }
+                    points_seen += LANES;
+                }
+            }
+        }
+        assert!(
+            together * LANES * 3 > points_seen,
+            "{together} groups of {points_seen} points"
+        );
+    }
+
+    /// Lanes answer a geometry and a law no axis changes, in `fast`, alone.
+    #[test]
+    fn which_solvers_run_lanes() {
+        let base = cars(12.0, true, one_law_of_each_kind()[2]);
+        let solver = |swept: &[Input], precision| Solver::new(&base, swept, Outputs::ALL, precision);
+        assert!(solver(&[Input::VelocityBY], Precision::Fast).in_lanes());
+        assert!(!solver(&[Input::VelocityBY], Precision::Exact).in_lanes());
+        assert!(!solver(&[Input::Friction], Precision::Fast).in_lanes());
+        assert!(!solver(&[Input::VelocityBY, Input::MassB], Precision::Fast).in_lanes());
+        assert!(!solver(&[Input::ContactX], Precision::Fast).in_lanes());
     }
 }

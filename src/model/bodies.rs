@@ -24,10 +24,10 @@
 use std::cmp::Ordering;
 
 use super::contact::{Assembly, ContactSpace, Reduced, under_law};
-use super::{Exact, half, out, out_times_sqrt, sign};
+use super::{Exact, half, outs, outs_times_sqrt, sign};
 use crate::arith::Field;
 use crate::error::{ImpactError, Input, Output};
-use crate::input::{BodiesImpact, Lamina};
+use crate::input::{BodiesImpact, Lamina, Law};
 use crate::outcome::{
     BODY_OUTPUTS, BodiesOutcome, BodyOutcome, ContactVelocities, Outputs, PlanarEnergy, WorldImpulse,
 };
@@ -77,15 +77,19 @@ struct Motion<N> {
 }
 
 impl<N: Field> Motion<N> {
-    /// Lamina `l`'s velocities, with its contact-point velocity's normal and
-    /// tangential parts (arm `r`, normal `n`, tangent `t`).
+    /// The velocities of lamina `l(i)` in lane `i`, with its contact-point
+    /// velocity's normal and tangential parts (arm `r`, normal `n`, tangent
+    /// `t`).
     #[inline(always)]
-    fn of(l: &Lamina, r: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
-        let u = contact_point_velocity(l, r);
+    fn of<'l>(l: impl Fn(usize) -> &'l Lamina, r: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
         let motion = Motion {
-            v: [N::of(l.velocity[0]), N::of(l.velocity[1])],
-            w: N::of(l.angular_velocity),
+            v: [
+                N::of_lanes(|i| l(i).velocity[0]),
+                N::of_lanes(|i| l(i).velocity[1]),
+            ],
+            w: N::of_lanes(|i| l(i).angular_velocity),
         };
+        let u = contact_point_velocity(&motion.v, &motion.w, r);
         (motion, along(&u, n), along(&u, t))
     }
 }
@@ -175,7 +179,9 @@ pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
 /// `u_b · n` of one body.
 #[inline(always)]
 fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
-    along(&contact_point_velocity(l, &contact_arm(l, c)), n)
+    let v = [N::of(l.velocity[0]), N::of(l.velocity[1])];
+    let w = N::of(l.angular_velocity);
+    along(&contact_point_velocity(&v, &w, &contact_arm(l, c)), n)
 }
 
 /// `r = C − G` of one body.
@@ -184,13 +190,12 @@ fn contact_arm<N: Field>(l: &Lamina, c: &[N; 2]) -> [N; 2] {
     [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))]
 }
 
-/// The contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of one body
-/// with arm `r`.
+/// The contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of a body
+/// moving at `v`, `ω` with arm `r`.
 #[inline(always)]
-fn contact_point_velocity<N: Field>(l: &Lamina, r: &[N; 2]) -> [N; 2] {
-    let w = N::of(l.angular_velocity);
-    let ux = w.neg().mul_add(&r[1], &N::of(l.velocity[0]));
-    let uy = w.mul_add(&r[0], &N::of(l.velocity[1]));
+fn contact_point_velocity<N: Field>(v: &[N; 2], w: &N, r: &[N; 2]) -> [N; 2] {
+    let ux = w.neg().mul_add(&r[1], &v[0]);
+    let uy = w.mul_add(&r[0], &v[1]);
     [ux, uy]
 }
 
@@ -201,8 +206,10 @@ fn along<N: Field>(u: &[N; 2], d: &[N; 2]) -> N {
 }
 
 /// A validated contact in the field: its geometry, its bodies' velocities
-/// and its contact space.
-struct Scene<'g, N> {
+/// and its contact space; the contacts of `L` points sharing one geometry
+/// and law in a field of `L` lanes ([`crate::arith::Lanes`]), of one point
+/// in every other.
+struct Scene<'g, N, const L: usize> {
     g: &'g Geometry<N>,
     /// Body A's, and B's when the geometry's `count` is 2.
     motion: [Motion<N>; 2],
@@ -210,20 +217,22 @@ struct Scene<'g, N> {
     reduced: Reduced<N>,
 }
 
-impl<'g, N: Field> Scene<'g, N> {
+impl<'g, N: Field, const L: usize> Scene<'g, N, L> {
+    /// The scene of the impacts `fast`, each with body B where the geometry
+    /// has it (the caller's to check).
     #[inline(always)]
-    fn new(g: &'g Geometry<N>, fast: &BodiesImpact) -> Self {
+    fn new(g: &'g Geometry<N>, fast: &[BodiesImpact; L]) -> Self {
         let (n, t) = (&g.n, &g.t);
         // ũ_n by the operations of `approach`, which validation decided on.
-        let (a, mut un, mut ut) = Motion::of(&fast.a, &g.bodies[0].r, n, t);
-        let motion = match &fast.b {
-            Some(l) => {
-                let (b, bun, but) = Motion::of(l, &g.bodies[1].r, n, t);
-                un = un.sub(&bun);
-                ut = ut.sub(&but);
-                [a, b]
-            }
-            None => [a.clone(), a],
+        let (a, mut un, mut ut) = Motion::of(|i| &fast[i].a, &g.bodies[0].r, n, t);
+        let motion = if g.count == 2 {
+            let body_b = |i: usize| fast[i].b.as_ref().unwrap_or(&fast[i].a);
+            let (b, bun, but) = Motion::of(body_b, &g.bodies[1].r, n, t);
+            un = un.sub(&bun);
+            ut = ut.sub(&but);
+            [a, b]
+        } else {
+            [a.clone(), a]
         };
         let [wnn, wnt, wtt] = g.w.clone();
         Scene {
@@ -240,17 +249,17 @@ impl<'g, N: Field> Scene<'g, N> {
         }
     }
 
-    /// `ũ_n / |n|` and friends: `x / |n|` correctly rounded.
+    /// `ũ_n / |n|` and friends: `x / |n|` correctly rounded, lane by lane.
     #[inline(always)]
-    fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
-        out_times_sqrt(output, &x.div(&self.g.nn), &self.g.nn)
+    fn along(&self, output: Output, x: &N) -> Exact<N, [f64; L]> {
+        outs_times_sqrt::<N, L>(output, &x.div(&self.g.nn), &self.g.nn)
     }
 
     /// The energies of the pair: `T = Σ ½ m v² + ½ I ω²`, the loss `−½ q·(ũ + Ũ)`
     /// (the work of the impulse), and `T_M = ½ ũᵀ W̃⁻¹ ũ` formed from
     /// `adj W̃ = α 1 + Σ ρ⊥ρ⊥ᵀ/I_b` as `½ [α |ũ|² + Σ (ρ_t ũ_n − ρ_n ũ_t)²/I_b] / det`.
     #[inline(always)]
-    fn energy(&self, work: &N) -> Exact<N, PlanarEnergy> {
+    fn energy(&self, work: &N) -> Exact<N, [PlanarEnergy; L]> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
         let Reduced { un, ut, .. } = &self.reduced;
@@ -264,21 +273,28 @@ impl<'g, N: Field> Scene<'g, N> {
         }
         let loss = h.mul(work).neg();
         let max_loss = h.mul(&adjugate).mul(&self.g.inv_det);
-        // The clamps only act on f64 roundings: the exact values satisfy them.
-        Ok(PlanarEnergy {
-            initial: out(Output::InitialEnergy, &initial)?,
-            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?.max(0.0),
-            loss: out(Output::EnergyLoss, &loss)?,
-            max_loss: out(Output::MaxEnergyLoss, &max_loss)?,
-            normalized_loss: out(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?.min(1.0),
-        })
+        // Each output of every lane, in a single solve's order, then each
+        // lane's energies. The clamps only act on f64 roundings: the exact
+        // values satisfy them.
+        let initial_energy = outs::<N, L>(Output::InitialEnergy, &initial)?;
+        let final_energy = outs::<N, L>(Output::FinalEnergy, &initial.sub(&loss))?;
+        let energy_loss = outs::<N, L>(Output::EnergyLoss, &loss)?;
+        let max_energy_loss = outs::<N, L>(Output::MaxEnergyLoss, &max_loss)?;
+        let normalized_loss = outs::<N, L>(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?;
+        Ok(std::array::from_fn(|lane| PlanarEnergy {
+            initial: initial_energy[lane],
+            r#final: final_energy[lane].max(0.0),
+            loss: energy_loss[lane],
+            max_loss: max_energy_loss[lane],
+            normalized_loss: normalized_loss[lane].min(1.0),
+        }))
     }
 }
 
-impl<N: Field> ContactSpace<N> for Scene<'_, N> {
+impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     /// The spins follow from `q` at assembly.
     type Turn = ();
-    type Outcome = BodiesOutcome;
+    type Outcome = [BodiesOutcome; L];
 
     #[inline(always)]
     fn reduced(&self) -> &Reduced<N> {
@@ -333,14 +349,16 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
     fn add_turns(_a: &(), _b: &()) {}
 
     #[inline(always)]
-    fn assemble(&self, x: &Assembly<'_, N, ()>, outcome: &mut BodiesOutcome) -> Exact<N, ()> {
+    fn assemble(&self, x: &Assembly<'_, N, ()>, outcomes: &mut [BodiesOutcome; L]) -> Exact<N, ()> {
         let a = x.answer;
         let (qn, qt) = (&a.dn, &a.dt);
         let [nx, ny] = &self.g.n;
         // P = q_n n + q_t t, t = (−n_y, n_x).
         let p = [nx.mul_add(qn, &ny.mul(qt).neg()), ny.mul_add(qn, &nx.mul(qt))];
         let p2 = p[0].mul_add(&p[0], &p[1].mul(&p[1]));
-        let mut bodies = [BodyOutcome::default(); 2];
+        // Each output of every lane, in the order a single solve tests them
+        // (the first refused is the one reported), then each lane's outcome.
+        let mut bodies = [[BodyOutcome::default(); 2]; L];
         for (k, (b, motion)) in self
             .g
             .bodies
@@ -353,57 +371,78 @@ impl<N: Field> ContactSpace<N> for Scene<'_, N> {
             let signed = |v: N| if k == 0 { v } else { v.neg() };
             let dv = [signed(p[0].mul(&b.inv_m)), signed(p[1].mul(&b.inv_m))];
             let dw = signed(b.rho[0].mul_add(qn, &b.rho[1].mul(qt)).mul(&b.inv_i));
-            bodies[k] = BodyOutcome {
-                velocity: [
-                    out(names[0], &motion.v[0].add(&dv[0]))?,
-                    out(names[1], &motion.v[1].add(&dv[1]))?,
-                ],
-                angular_velocity: out(names[2], &motion.w.add(&dw))?,
-                velocity_change: [out(names[3], &dv[0])?, out(names[4], &dv[1])?],
-                delta_v: out_times_sqrt(names[5], &b.inv_m, &p2)?,
-                angular_velocity_change: out(names[6], &dw)?,
-            };
+            let velocity = [
+                outs::<N, L>(names[0], &motion.v[0].add(&dv[0]))?,
+                outs::<N, L>(names[1], &motion.v[1].add(&dv[1]))?,
+            ];
+            let angular_velocity = outs::<N, L>(names[2], &motion.w.add(&dw))?;
+            let velocity_change = [outs::<N, L>(names[3], &dv[0])?, outs::<N, L>(names[4], &dv[1])?];
+            let delta_v = outs_times_sqrt::<N, L>(names[5], &b.inv_m, &p2)?;
+            let angular_velocity_change = outs::<N, L>(names[6], &dw)?;
+            for (lane, body) in bodies.iter_mut().enumerate() {
+                body[k] = BodyOutcome {
+                    velocity: [velocity[0][lane], velocity[1][lane]],
+                    angular_velocity: angular_velocity[lane],
+                    velocity_change: [velocity_change[0][lane], velocity_change[1][lane]],
+                    delta_v: delta_v[lane],
+                    angular_velocity_change: angular_velocity_change[lane],
+                };
+            }
         }
-        let contact_velocity = ContactVelocities {
-            initial: ContactVelocity {
-                normal: self.along(Output::InitialNormalContactVelocity, &self.reduced.un)?,
-                tangential: self.along(Output::InitialTangentialContactVelocity, &self.reduced.ut)?,
-            },
-            r#final: ContactVelocity {
-                normal: self.along(Output::FinalNormalContactVelocity, &a.un)?,
-                tangential: self.along(Output::FinalTangentialContactVelocity, &a.ut)?,
-            },
-        };
-        let impulse = WorldImpulse {
-            normal: out_times_sqrt(Output::NormalImpulse, qn, &self.g.nn)?,
-            tangential: out_times_sqrt(Output::TangentialImpulse, qt, &self.g.nn)?,
-            x: out(Output::ImpulseX, &p[0])?,
-            y: out(Output::ImpulseY, &p[1])?,
-        };
-        let impulse_ratio = out(Output::ImpulseRatio, x.mu)?;
+        let initial_contact = [
+            self.along(Output::InitialNormalContactVelocity, &self.reduced.un)?,
+            self.along(Output::InitialTangentialContactVelocity, &self.reduced.ut)?,
+        ];
+        let final_contact = [
+            self.along(Output::FinalNormalContactVelocity, &a.un)?,
+            self.along(Output::FinalTangentialContactVelocity, &a.ut)?,
+        ];
+        let impulse = [
+            outs_times_sqrt::<N, L>(Output::NormalImpulse, qn, &self.g.nn)?,
+            outs_times_sqrt::<N, L>(Output::TangentialImpulse, qt, &self.g.nn)?,
+            outs::<N, L>(Output::ImpulseX, &p[0])?,
+            outs::<N, L>(Output::ImpulseY, &p[1])?,
+        ];
+        let impulse_ratio = outs::<N, L>(Output::ImpulseRatio, x.mu)?;
         // `null` where the sticking impulse has no normal part (conventions, rule 5).
         let critical_impulse_ratio = match &x.critical {
-            Some(Some(mu_c)) => Some(out(Output::CriticalImpulseRatio, mu_c)?),
-            Some(None) | None => None,
+            Some(Some(mu_c)) => outs::<N, L>(Output::CriticalImpulseRatio, mu_c)?.map(Some),
+            Some(None) | None => [None; L],
         };
-        let restitution = out(Output::Restitution, x.e)?;
+        let restitution = outs::<N, L>(Output::Restitution, x.e)?;
         let energy = if x.outputs.energy {
             Some(self.energy(&x.work)?)
         } else {
             None
         };
-        *outcome = BodiesOutcome {
-            bodies,
-            body_count: self.g.count,
-            contact_velocity,
-            impulse,
-            impulse_ratio,
-            critical_impulse_ratio,
-            restitution,
-            kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution),
-            regime: x.regime,
-            energy,
-        };
+        for (lane, outcome) in outcomes.iter_mut().enumerate() {
+            *outcome = BodiesOutcome {
+                bodies: bodies[lane],
+                body_count: self.g.count,
+                contact_velocity: ContactVelocities {
+                    initial: ContactVelocity {
+                        normal: initial_contact[0][lane],
+                        tangential: initial_contact[1][lane],
+                    },
+                    r#final: ContactVelocity {
+                        normal: final_contact[0][lane],
+                        tangential: final_contact[1][lane],
+                    },
+                },
+                impulse: WorldImpulse {
+                    normal: impulse[0][lane],
+                    tangential: impulse[1][lane],
+                    x: impulse[2][lane],
+                    y: impulse[3][lane],
+                },
+                impulse_ratio: impulse_ratio[lane],
+                critical_impulse_ratio: critical_impulse_ratio[lane],
+                restitution: restitution[lane],
+                kinetic_restitution: x.kinetic_restitution.unwrap_or(restitution[lane]),
+                regime: x.regime,
+                energy: energy.map(|energy| energy[lane]),
+            };
+        }
         Ok(())
     }
 }
@@ -428,7 +467,29 @@ pub(crate) fn bodies<N: Field>(
             &formed
         }
     };
-    let scene = Scene::new(geometry, impact);
+    bodies_lanes::<N, 1>(
+        std::array::from_ref(impact),
+        &impact.law,
+        geometry,
+        outputs,
+        std::array::from_mut(out),
+    )
+}
+
+/// The contacts of `L` points in a field of `L` lanes
+/// ([`crate::arith::Lanes`]) under one validated law, sharing `geometry`
+/// (each point with body B where the geometry has it): every outcome
+/// written, or an error (in lanes, that the points are to be solved one by
+/// one). Refused unless the contacts approach.
+#[inline(always)]
+pub(crate) fn bodies_lanes<N: Field, const L: usize>(
+    impacts: &[BodiesImpact; L],
+    law: &Law,
+    geometry: &Geometry<N>,
+    outputs: Outputs,
+    out: &mut [BodiesOutcome; L],
+) -> Exact<N, ()> {
+    let scene = Scene::<N, L>::new(geometry, impacts);
     if sign(&scene.reduced.s)? != Ordering::Greater {
         return Err(ImpactError::NotApproaching {
             input: Input::VelocityA,
@@ -436,5 +497,5 @@ pub(crate) fn bodies<N: Field>(
         }
         .into());
     }
-    under_law(&scene, &impact.law, outputs, out)
+    under_law(&scene, law, outputs, out)
 }

@@ -109,6 +109,18 @@ pub(crate) fn out_times_sqrt<N: Field>(output: Output, x: &N, y: &N) -> Exact<N,
     }
 }
 
+/// [`out_times_sqrt`] of each of `L` lanes ([`Field::lanes_output_times_sqrt`]).
+#[inline(always)]
+pub(crate) fn outs_times_sqrt<N: Field, const L: usize>(output: Output, x: &N, y: &N) -> Exact<N, [f64; L]> {
+    let mut values = [0.0; L];
+    x.lanes_output_times_sqrt(y, output.scale_kind(), &mut values)
+        .map_err(Fail::Undecided)?;
+    for v in values {
+        finite_output::<N::Undecided>(output, v)?;
+    }
+    Ok(values)
+}
+
 #[inline(always)]
 pub(crate) fn half<N: Field>() -> N {
     N::of(0.5)
