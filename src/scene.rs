@@ -162,7 +162,9 @@ impl BarrierScene {
     /// for a `v_cn` below the f64 range, whose sign is then decided in exact
     /// arithmetic.
     pub fn new(body: Body, contact: Contact, velocity: PlanarVelocity) -> Result<Self> {
-        Placed::new(body, contact)?.moving(velocity)
+        let scene = Placed::new(body, contact)?.moving_unchecked(velocity);
+        scene.check_velocity()?;
+        Ok(scene)
     }
 
     /// Checks that the velocities are finite and that the contact
