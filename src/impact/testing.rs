@@ -53,6 +53,32 @@ pub(crate) fn formed_once_answers_as_per_point<C: Case>(
     answered
 }
 
+/// For the cases' unit tests: `points` through `solver`'s block entry
+/// ([`Solver::solve_block_into`], in lanes where the case runs them) are
+/// answered or refused each as its single solve in `fast` (every output,
+/// bit for bit). Returns the refused points' positions.
+pub(crate) fn block_answers_as_single_solves<C: Case>(solver: &Solver<C>, points: &[C]) -> Vec<usize> {
+    let mut outs = vec![C::Outcome::default(); points.len()];
+    let mut refused = Vec::new();
+    solver.solve_block_into(points, &mut outs, |k, e| refused.push((k, e)));
+    for (k, (point, outcome)) in points.iter().zip(&outs).enumerate() {
+        let single = solve(point, Outputs::ALL, Precision::Fast);
+        match refused.iter().find(|(i, _)| *i == k) {
+            Some((_, e)) => assert_eq!(
+                format!("{:?}", Err::<(), _>(e)),
+                format!("{:?}", single.map(|_| ())),
+                "{k}"
+            ),
+            None => assert_eq!(
+                format!("{single:?}"),
+                format!("{:?}", Ok::<_, ()>(outcome)),
+                "{k}: {point:?}"
+            ),
+        }
+    }
+    refused.into_iter().map(|(k, _)| k).collect()
+}
+
 /// One law of each kind, for the cases' unit tests.
 pub(crate) fn one_law_of_each_kind() -> [crate::input::Law; 6] {
     use crate::input::Law;
