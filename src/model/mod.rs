@@ -102,11 +102,7 @@ pub(crate) fn out_times_sqrt<N: Field>(output: Output, x: &N, y: &N) -> Exact<N,
     let v = x
         .round_output_times_sqrt(y, output.scale_kind())
         .map_err(Fail::Undecided)?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(ImpactError::OutputNotFinite { output }.into())
-    }
+    finite_output(output, v)
 }
 
 /// [`out_times_sqrt`] of each of `L` lanes ([`Field::lanes_output_times_sqrt`]).
