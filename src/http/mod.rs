@@ -411,7 +411,9 @@ pub async fn serve(listener: tokio::net::TcpListener, config: &ServiceConfig) ->
 /// headers within `header_read_timeout_ms`. On the signal the listener closes
 /// (new connections are refused), idle keep-alive connections close, and
 /// in-flight requests (streamed sweeps included) have `shutdown_grace_ms` to
-/// finish before the remaining connections are dropped.
+/// finish before the remaining connections are dropped. A connection whose
+/// first bytes the server has not read yet when the signal arrives counts as
+/// idle and is closed (hyper-util's protocol detection is cancelled).
 pub async fn serve_until(
     listener: tokio::net::TcpListener,
     config: &ServiceConfig,

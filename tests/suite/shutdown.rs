@@ -38,10 +38,19 @@ fn sigterm_lets_in_flight_work_finish_refuses_new_connections_and_exits_zero() {
         .spawn()
         .expect("start the binary");
 
-    // In flight 1: a request whose body is only half sent.
+    // In flight 1: a request whose body is only half sent. It asks for
+    // `100 Continue` and waits for it, so the server is known to be reading
+    // its body (a connection whose head the server has not read yet when the
+    // signal arrives counts as idle and is closed).
     let mut half = connect(port);
-    half.write_all(head("/v1/impacts/normal", "application/json", IMPACT.len()).as_bytes())
-        .unwrap();
+    let expecting = head("/v1/impacts/normal", "application/json", IMPACT.len()).replace(
+        "connection: close\r\n",
+        "connection: close\r\nexpect: 100-continue\r\n",
+    );
+    half.write_all(expecting.as_bytes()).unwrap();
+    let mut interim = [0u8; 25];
+    half.read_exact(&mut interim).unwrap();
+    assert_eq!(&interim, b"HTTP/1.1 100 Continue\r\n\r\n");
     half.write_all(&IMPACT.as_bytes()[..20]).unwrap();
 
     // In flight 2: a streamed sweep of 500,000 rows, of which we read only the start for now.
