@@ -72,6 +72,9 @@ fn requests() -> Vec<Value> {
                    "axes": [lin("/velocity/tangential", -5.0, 5.0, 401), log("/body/mass")]}),
             json!({"case": "torsional", "base": torsional, "precision": precision,
                    "axes": [lin("/velocity/spin", -100.0, 100.0, 801)]}),
+            // In `fast`, in lanes; beyond 2^±200 one by one.
+            json!({"case": "torsional", "base": torsional, "precision": precision,
+                   "axes": [lin("/velocity/spin", -100.0, 100.0, 81), log("/body/mass")]}),
             json!({"case": "planar", "base": planar["base"], "precision": precision,
                    "axes": [lin("/bodies/1/velocity/y", -30.0, 30.0, 61), lin("/friction", 0.0, 1.0, 11)]}),
             // No law on an axis: in `fast`, in lanes.

@@ -55,14 +55,14 @@ pub(crate) fn formed_once_answers_as_per_point<C: Case>(
 
 /// For the cases' unit tests: `points` through `solver`'s block entry
 /// ([`Solver::solve_block_into`], in lanes where the case runs them) are
-/// answered or refused each as its single solve in `fast` (every output,
-/// bit for bit). Returns the refused points' positions.
+/// answered or refused each as its single solve in `fast` (for the solver's
+/// outputs, bit for bit). Returns the refused points' positions.
 pub(crate) fn block_answers_as_single_solves<C: Case>(solver: &Solver<C>, points: &[C]) -> Vec<usize> {
     let mut outs = vec![C::Outcome::default(); points.len()];
     let mut refused = Vec::new();
     solver.solve_block_into(points, &mut outs, |k, e| refused.push((k, e)));
     for (k, (point, outcome)) in points.iter().zip(&outs).enumerate() {
-        let single = solve(point, Outputs::ALL, Precision::Fast);
+        let single = solve(point, solver.outputs(), Precision::Fast);
         match refused.iter().find(|(i, _)| *i == k) {
             Some((_, e)) => assert_eq!(
                 format!("{:?}", Err::<(), _>(e)),

@@ -11,13 +11,13 @@
 
 use std::cmp::Ordering;
 
-use super::{Exact, abs, half, out, sign};
+use super::{Exact, abs, half, outs, sign};
 use crate::arith::Field;
 use crate::error::Output;
 use crate::outcome::{RotationalEnergy, TorsionalOutcome, TorsionalRegime};
 
 /// The validated inputs of a torsional impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Torsion {
     pub m: f64,
     pub i_n: f64,
@@ -34,17 +34,37 @@ pub(crate) struct Torsion {
 /// `½ I_n (ω_n − Ω_n)(ω_n + Ω_n)` never subtracts two nearly equal energies.
 #[inline(always)]
 pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut TorsionalOutcome) -> Exact<N, ()> {
+    torsional_lanes::<N, 1>(std::array::from_ref(v), energy, std::array::from_mut(outcome))
+}
+
+/// The impacts of `L` points in a field of `L` lanes
+/// ([`crate::arith::Lanes`]), each with its own inputs: every outcome
+/// written, or an error (in lanes, that the points are to be solved one by
+/// one). Each output of every lane is tested in [`torsional`]'s order before
+/// any outcome is written.
+#[inline(always)]
+pub(crate) fn torsional_lanes<N: Field, const L: usize>(
+    v: &[Torsion; L],
+    energy: bool,
+    outcome: &mut [TorsionalOutcome; L],
+) -> Exact<N, ()> {
+    debug_assert_eq!(N::LANES, L);
     let one = N::of(1.0);
+    let input = |x: fn(&Torsion) -> f64| N::of_lanes(|i| x(&v[i]));
     let (m, i_n, vn, w, e, ez) = (
-        N::of(v.m),
-        N::of(v.i_n),
-        N::of(v.vn),
-        N::of(v.w),
-        N::of(v.e),
-        N::of(v.ez),
+        input(|v| v.m),
+        input(|v| v.i_n),
+        input(|v| v.vn),
+        input(|v| v.w),
+        input(|v| v.e),
+        input(|v| v.ez),
     );
     let qn = one.add(&e).mul(&vn.neg());
-    let switch = N::of(v.mu_z).mul(&N::of(v.rho)).mul(&qn).mul(&m.div(&i_n));
+    let switch = input(|v| v.mu_z)
+        .mul(&input(|v| v.rho))
+        .mul(&qn)
+        .mul(&m.div(&i_n));
+    // Every lane's spin has the sign `abs` decided (the same in all lanes).
     let magnitude = abs(&w)?;
     let (regime, spin, change, sum) = if sign(&switch.sub(&magnitude))? != Ordering::Less {
         (
@@ -57,7 +77,9 @@ pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut Torsi
         let change = ez.mul_add(&magnitude, &switch);
         let remaining = one.sub(&ez).mul_add(&magnitude, &switch.neg());
         let sum = N::of(2.0).sub(&ez).mul_add(&magnitude, &switch.neg());
-        let signed = |x: N| if v.w < 0.0 { x.neg() } else { x };
+        // Sliding needs `|ω_n| > ω_s ≥ 0`: every lane's spin is non-zero,
+        // of the one sign.
+        let signed = |x: N| if v[0].w < 0.0 { x.neg() } else { x };
         (
             TorsionalRegime::Sliding,
             signed(remaining),
@@ -67,22 +89,33 @@ pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut Torsi
     };
     let energy = if energy {
         let half_i = half::<N>().mul(&i_n);
-        Some(RotationalEnergy {
-            initial: out(Output::InitialEnergy, &half_i.mul(&w.mul(&w)))?,
-            r#final: out(Output::FinalEnergy, &half_i.mul(&spin.mul(&spin)))?,
-            loss: out(Output::EnergyLoss, &half_i.mul(&change).mul(&sum))?,
-        })
+        Some((
+            outs::<N, L>(Output::InitialEnergy, &half_i.mul(&w.mul(&w)))?,
+            outs::<N, L>(Output::FinalEnergy, &half_i.mul(&spin.mul(&spin)))?,
+            outs::<N, L>(Output::EnergyLoss, &half_i.mul(&change).mul(&sum))?,
+        ))
     } else {
         None
     };
-    *outcome = TorsionalOutcome {
-        final_normal_velocity: out(Output::FinalNormalVelocity, &e.mul(&vn).neg())?,
-        final_spin: out(Output::FinalSpin, &spin)?,
-        normal_impulse: out(Output::NormalImpulse, &m.mul(&qn))?,
-        torsional_impulse: out(Output::TorsionalImpulse, &i_n.mul(&change).neg())?,
-        regime,
-        switch_spin: out(Output::SwitchSpin, &switch)?,
-        energy,
-    };
+    let final_normal_velocity = outs::<N, L>(Output::FinalNormalVelocity, &e.mul(&vn).neg())?;
+    let final_spin = outs::<N, L>(Output::FinalSpin, &spin)?;
+    let normal_impulse = outs::<N, L>(Output::NormalImpulse, &m.mul(&qn))?;
+    let torsional_impulse = outs::<N, L>(Output::TorsionalImpulse, &i_n.mul(&change).neg())?;
+    let switch_spin = outs::<N, L>(Output::SwitchSpin, &switch)?;
+    for (lane, outcome) in outcome.iter_mut().enumerate() {
+        *outcome = TorsionalOutcome {
+            final_normal_velocity: final_normal_velocity[lane],
+            final_spin: final_spin[lane],
+            normal_impulse: normal_impulse[lane],
+            torsional_impulse: torsional_impulse[lane],
+            regime,
+            switch_spin: switch_spin[lane],
+            energy: energy.map(|(initial, r#final, loss)| RotationalEnergy {
+                initial: initial[lane],
+                r#final: r#final[lane],
+                loss: loss[lane],
+            }),
+        };
+    }
     Ok(())
 }
