@@ -26,6 +26,12 @@ pub trait Answers: Sized {
     /// of a sweep, the read inlined into its loop, rather than one call per
     /// point and column. `None` for an output of another case.
     fn column(output: Output) -> Option<ColumnReader<Self>>;
+    /// How to read a number output's column off many outcomes straight into
+    /// numbers, `values[i]` from `outcomes[i]` (`NaN` where
+    /// [`Answers::column`] gives a name): for an encoder that writes typed
+    /// columns (Arrow), without a cell between. `None` for an output of
+    /// another case.
+    fn numbers(output: Output) -> Option<NumberReader<Self>>;
     /// One output's value, `None` for an output of another case.
     #[inline]
     fn value(&self, output: Output) -> Option<Value> {
@@ -35,6 +41,9 @@ pub trait Answers: Sized {
 
 /// Reads one output's column off many outcomes into as many cells ([`Answers::column`]).
 pub type ColumnReader<O> = fn(&[O], &mut [Value]);
+
+/// Reads one number output's column off many outcomes into as many numbers ([`Answers::numbers`]).
+pub type NumberReader<O> = fn(&[O], &mut [f64]);
 
 /// Implements [`Answers`] for an outcome type from one list of
 /// `Output => |outcome| value` entries, in response order.
@@ -57,6 +66,18 @@ macro_rules! answers {
                     $(Output::$output => Some(|outcomes: &[Self], cells: &mut [Value]| {
                         for ($o, cell) in outcomes.iter().zip(cells) {
                             *cell = Value::from($read);
+                        }
+                    }),)*
+                    _ => None,
+                }
+            }
+
+            #[inline]
+            fn numbers(output: Output) -> Option<NumberReader<Self>> {
+                match output {
+                    $(Output::$output => Some(|outcomes: &[Self], values: &mut [f64]| {
+                        for ($o, value) in outcomes.iter().zip(values) {
+                            *value = Value::from($read).number();
                         }
                     }),)*
                     _ => None,

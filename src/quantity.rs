@@ -393,6 +393,17 @@ pub enum Value {
     Text(&'static str),
 }
 
+impl Value {
+    /// The number, or `NaN` for a name.
+    #[inline(always)]
+    pub fn number(self) -> f64 {
+        match self {
+            Value::Number(x) => x,
+            Value::Text(_) => f64::NAN,
+        }
+    }
+}
+
 impl From<f64> for Value {
     #[inline]
     fn from(x: f64) -> Self {

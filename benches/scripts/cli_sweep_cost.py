@@ -15,7 +15,9 @@ Scenes: Figure 2's Coulomb scene (examples/figure2_coulomb_friction.json)
 over 2 x 10^6 values of v_t, sliding ones (v_t in [2, 5]) with one output
 (V_ct), and v_t in [-5, 5] with one output and with every output; the
 two cars of examples/planar_car_to_car_sweep.json over 10^6 values of
-car B's velocity, every output; the topspin tennis ball
+car B's velocity, every output; Figure 4's rubber ball
+(examples/figure4_torsional_rubber_ball.json) over 2 x 10^6 spins in
+[-100, 100], every output; the topspin tennis ball
 (examples/spatial_tennis_topspin.json) over sideways velocity x topspin,
 400 x 500 points, every output.
 """
@@ -47,6 +49,13 @@ def cars():
     return request
 
 
+def torsional():
+    request = copy.deepcopy(example("figure4_torsional_rubber_ball.json"))
+    request["axes"] = [{"path": "/velocity/spin", "linspace": {"start": -100.0, "stop": 100.0, "count": 2_000_000}}]
+    request.pop("outputs")
+    return request
+
+
 def tennis():
     return {
         "case": "spatial",
@@ -64,6 +73,7 @@ SCENES = {
     "figure 2, V_ct": (oblique(-5.0, 5.0, V_CT), 2_000_000),
     "figure 2, every output": (oblique(-5.0, 5.0, None), 2_000_000),
     "two cars, every output": (cars(), 1_000_000),
+    "figure 4 torsional, every output": (torsional(), 2_000_000),
     "tennis ball, every output": (tennis(), 200_000),
 }
 

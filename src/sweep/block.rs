@@ -4,6 +4,15 @@
 use super::{BLOCK, Cell, Row};
 use crate::error::ImpactError;
 
+/// One output column of a [`Block`].
+#[derive(Debug, Clone, Copy)]
+pub enum Column<'a> {
+    /// A number output read straight into numbers (`NaN` where not computed).
+    Numbers(&'a [f64]),
+    /// Cells: names, or numbers of a sweep that reads only cells.
+    Cells(&'a [Cell]),
+}
+
 /// A block of evaluated points (at most 128), column by column.
 #[derive(Debug)]
 pub struct Block<'a> {
@@ -12,8 +21,12 @@ pub struct Block<'a> {
     pub(super) axes: usize,
     pub(super) axis_values: &'a [f64],
     pub(super) axis_indices: &'a [u64],
-    /// Column `c`'s cells start at `c · BLOCK`.
+    /// Column `c`'s cells start at `c · BLOCK` (unless it was read as numbers).
     pub(super) cells: &'a [Cell],
+    /// Column `c`'s numbers start at `c · BLOCK`, where it was read as numbers.
+    pub(super) numbers: &'a [f64],
+    /// Whether each column was read as numbers (empty where none was).
+    pub(super) read_as_numbers: &'a [bool],
     pub(super) answered: &'a [bool],
     pub(super) refusals: &'a [(usize, ImpactError)],
 }
@@ -40,11 +53,18 @@ impl<'a> Block<'a> {
         self.axis_values.iter().skip(axis).step_by(self.axes).copied()
     }
 
-    /// Output column `column`'s cells, point by point (a refused point's
-    /// cell is not its answer: see [`answered`](Self::answered)).
+    /// Output column `column`, point by point (a refused point's value is
+    /// not its answer: see [`answered`](Self::answered)): numbers where the
+    /// sweep read a number output as numbers (for an encoder of typed
+    /// columns, [`super::Sweep::for_each_block_in`]), else cells.
     #[inline]
-    pub fn column(&self, column: usize) -> &'a [Cell] {
-        &self.cells[column * BLOCK..column * BLOCK + self.len]
+    pub fn column(&self, column: usize) -> Column<'a> {
+        let at = column * BLOCK..column * BLOCK + self.len;
+        if self.read_as_numbers.get(column) == Some(&true) {
+            Column::Numbers(&self.numbers[at])
+        } else {
+            Column::Cells(&self.cells[at])
+        }
     }
 
     /// Whether each point has an answer.
@@ -59,9 +79,11 @@ impl<'a> Block<'a> {
         self.refusals
     }
 
-    /// Hands each point to `visit` as a [`Row`], its cells gathered into `row`.
+    /// Hands each point to `visit` as a [`Row`], its cells gathered into `row`
+    /// (a block whose every column was read into cells).
     #[inline(always)]
     pub(super) fn rows(&self, row: &mut [Cell], visit: &mut impl FnMut(Row<'_>)) {
+        debug_assert!(!self.read_as_numbers.contains(&true));
         let axes = self.axes;
         let mut refused = self.refusals.iter().peekable();
         for k in 0..self.len {

@@ -4,7 +4,7 @@
 use super::{Cell, SweepCase};
 use crate::error::{ImpactError, Input, Output};
 use crate::impact::{Arithmetic, Case, Precision, Solver};
-use crate::outcome::{Answers, ColumnReader, Outputs};
+use crate::outcome::{Answers, ColumnReader, NumberReader, Outputs};
 
 /// An impact case over a grid: the base impact's [`Solver`] and the chosen
 /// output columns.
@@ -15,6 +15,9 @@ pub struct CaseSweep<C: Case> {
     /// How each column is read off a block's outcomes (the case's
     /// declaration, looked up once).
     readers: Vec<ColumnReader<C::Outcome>>,
+    /// How each number column is read straight into numbers (`None` for a
+    /// column of names).
+    numbers: Vec<Option<NumberReader<C::Outcome>>>,
 }
 
 /// Why a sweep of a case cannot be prepared.
@@ -56,10 +59,15 @@ impl<C: Case> CaseSweep<C> {
             .iter()
             .map(|&c| C::Outcome::column(c).ok_or(CaseSweepError::NotAnswered(c)))
             .collect::<Result<_, _>>()?;
+        let numbers = columns
+            .iter()
+            .map(|&c| if c.is_name() { None } else { C::Outcome::numbers(c) })
+            .collect();
         Ok(CaseSweep {
             solver: Solver::in_arithmetic(base, swept, Outputs::needed_by(&columns), arithmetic),
             columns,
             readers,
+            numbers,
         })
     }
 
@@ -121,6 +129,17 @@ impl<C: Case> SweepCase for CaseSweep<C> {
     fn read(&self, column: usize, outcomes: &[C::Outcome], cells: &mut [Cell]) {
         (self.readers[column])(outcomes, cells)
     }
+
+    #[inline]
+    fn read_numbers(&self, column: usize, outcomes: &[C::Outcome], values: &mut [f64]) -> bool {
+        match self.numbers[column] {
+            Some(read) => {
+                read(outcomes, values);
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -129,7 +148,7 @@ mod tests {
     use crate::impact::{BarrierImpact, Law, TorsionalImpact, solve};
     use crate::input::BarrierBody;
     use crate::scene::{Contact, PlanarVelocity};
-    use crate::sweep::{Axis, AxisValues, Combine, Sweep};
+    use crate::sweep::{Axis, AxisValues, Column, Combine, Sweep};
 
     fn maw(friction: f64) -> BarrierImpact {
         BarrierImpact::rigid(
@@ -339,5 +358,57 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A sweep's blocks read each number column straight into numbers, and
+    /// the columns of names into cells: every value the rows' cell, bit for
+    /// bit (refusals, outputs not computed and names included).
+    #[test]
+    fn blocks_read_number_columns_as_the_rows_cells() {
+        let base = maw(0.123);
+        let columns = <BarrierImpact as Case>::Outcome::OUTPUTS.to_vec();
+        let case = CaseSweep::new(
+            &base,
+            &[Input::NormalVelocity, Input::TangentialVelocity],
+            columns,
+            Precision::Fast,
+        )
+        .unwrap();
+        let axes = vec![
+            Axis {
+                param: Input::NormalVelocity,
+                values: AxisValues::List(vec![-1.0, 0.5, -2.0, -1e300]),
+            },
+            Axis {
+                param: Input::TangentialVelocity,
+                values: AxisValues::List((0..70).map(|k| -3.0 + 0.1 * k as f64).collect()),
+            },
+        ];
+        let sweep = Sweep::new(case, base, axes, Combine::Product, u64::MAX).unwrap();
+        let mut rows = Vec::new();
+        sweep.for_each_in(0..sweep.points(), |row| {
+            rows.push(row.outcome.map(|c| c.to_vec()).ok())
+        });
+        let mut seen = 0;
+        sweep.for_each_block_in(0..sweep.points(), |block| {
+            for (c, output) in sweep.case().columns().iter().enumerate() {
+                let column = block.column(c);
+                assert_eq!(output.is_name(), matches!(column, Column::Cells(_)), "{output:?}");
+                for (k, &answered) in block.answered().iter().enumerate() {
+                    let row = &rows[block.start() as usize + k];
+                    assert_eq!(answered, row.is_some());
+                    let Some(cells) = row else { continue };
+                    match column {
+                        Column::Numbers(values) => {
+                            assert_eq!(values[k].to_bits(), cells[c].number().to_bits(), "{output:?}")
+                        }
+                        Column::Cells(cells_here) => assert_eq!(cells_here[k], cells[c]),
+                    }
+                }
+            }
+            seen += block.len();
+        });
+        assert_eq!(seen, rows.len());
+        assert!(rows.iter().any(Option::is_none) && rows.iter().filter(|r| r.is_some()).count() > 100);
     }
 }

@@ -19,7 +19,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use std::sync::mpsc;
 
-pub use block::Block;
+pub use block::{Block, Column};
 pub use case::{CaseSweep, CaseSweepError};
 use grid::Odometer;
 pub use grid::{AxisValues, Combine, GridError, count_points, shard};
@@ -71,6 +71,14 @@ pub trait SweepCase: Sync {
     /// per outcome (including outcomes of points without an answer, whose
     /// cells are not shown).
     fn read(&self, column: usize, outcomes: &[Self::Outcome], cells: &mut [Cell]);
+    /// Reads number column `column` off a block's `outcomes` into `values`,
+    /// as [`read`](Self::read) would into cells: `false` (nothing read) for
+    /// a column of names, or a case that reads only cells.
+    #[inline(always)]
+    fn read_numbers(&self, column: usize, outcomes: &[Self::Outcome], values: &mut [f64]) -> bool {
+        let _ = (column, outcomes, values);
+        false
+    }
 }
 
 /// Points evaluated before their columns are read: enough that a column is
@@ -212,6 +220,7 @@ impl<C: SweepCase> Sweep<C> {
             || {
                 self.for_each_block_here(
                     range,
+                    false,
                     #[inline(always)]
                     |block| block.rows(&mut row, &mut visit),
                 )
@@ -226,12 +235,14 @@ impl<C: SweepCase> Sweep<C> {
     pub fn for_each_block_in(&self, range: Range<u64>, visit: impl FnMut(&Block<'_>)) {
         crate::kernels::run(
             #[inline(always)]
-            || self.for_each_block_here(range, visit),
+            || self.for_each_block_here(range, true, visit),
         )
     }
 
+    /// The block loop: with `typed`, number columns are read straight into
+    /// numbers ([`SweepCase::read_numbers`]), else every column into cells.
     #[inline(always)]
-    fn for_each_block_here(&self, range: Range<u64>, mut visit: impl FnMut(&Block<'_>)) {
+    fn for_each_block_here(&self, range: Range<u64>, typed: bool, mut visit: impl FnMut(&Block<'_>)) {
         let start = range.start.max(self.range.start);
         let end = range.end.min(self.range.end);
         if start >= end {
@@ -256,6 +267,8 @@ impl<C: SweepCase> Sweep<C> {
         let mut refusals: Vec<(usize, ImpactError)> = Vec::with_capacity(BLOCK);
         let mut answered = [true; BLOCK];
         let mut cells = vec![Cell::Number(0.0); BLOCK * columns];
+        let mut numbers = vec![0.0; if typed { BLOCK * columns } else { 0 }];
+        let mut read_as_numbers = vec![false; if typed { columns } else { 0 }];
         let mut current = vec![0.0; axes];
         let mut point = self.base;
         let mut changed = 0;
@@ -296,8 +309,17 @@ impl<C: SweepCase> Sweep<C> {
                     .evaluate_block(&points[..n], &mut outcomes[..n], &mut refusals);
             }
             for column in 0..columns {
-                let cells = &mut cells[column * BLOCK..column * BLOCK + n];
-                self.case.read(column, &outcomes[..n], cells);
+                let at = column * BLOCK..column * BLOCK + n;
+                let as_numbers = typed
+                    && self
+                        .case
+                        .read_numbers(column, &outcomes[..n], &mut numbers[at.clone()]);
+                if let Some(read) = read_as_numbers.get_mut(column) {
+                    *read = as_numbers;
+                }
+                if !as_numbers {
+                    self.case.read(column, &outcomes[..n], &mut cells[at]);
+                }
             }
             answered[..n].fill(true);
             for &(k, _) in &refusals {
@@ -310,6 +332,8 @@ impl<C: SweepCase> Sweep<C> {
                 axis_values: &values[..n * axes],
                 axis_indices: &digits[..n * axes],
                 cells: &cells,
+                numbers: &numbers,
+                read_as_numbers: &read_as_numbers,
                 answered: &answered[..n],
                 refusals: &refusals,
             });
@@ -482,7 +506,11 @@ mod tests {
                     (block.axis(0).collect(), block.axis(1).collect());
                 for k in 0..block.len() {
                     assert_eq!(block.answered()[k], !refused.contains(&k));
-                    let out = match block.column(0)[k] {
+                    // This case reads cells alone.
+                    let Column::Cells(cells) = block.column(0) else {
+                        panic!("a column of cells")
+                    };
+                    let out = match cells[k] {
                         Cell::Number(x) if block.answered()[k] => Some(x),
                         _ => None,
                     };

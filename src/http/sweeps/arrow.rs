@@ -18,7 +18,7 @@ use arrow_schema::{DataType, Field, Schema, SchemaRef};
 
 use super::stream::Sink;
 use crate::quantity::Output;
-use crate::sweep::{Cell, Sweep, SweepCase};
+use crate::sweep::{Cell, Column, Sweep, SweepCase};
 
 /// Bytes of column data per record batch (about): large enough that the IPC
 /// framing is noise, small enough that a stream holds a few MiB.
@@ -140,7 +140,13 @@ impl ArrowLayout {
             for (i, &is_text) in self.text.iter().enumerate() {
                 if is_text {
                     let (keys, valid) = &mut chunk.keys[text];
-                    for (cell, &ok) in block.column(i).iter().zip(answered) {
+                    // (A column of names is read into cells: numbers hold no name.)
+                    let column = block.column(i);
+                    for (k, &ok) in answered.iter().enumerate() {
+                        let cell = match column {
+                            Column::Cells(cells) => cells[k],
+                            Column::Numbers(numbers) => Cell::Number(numbers[k]),
+                        };
                         match cell {
                             Cell::Text(name) if ok => {
                                 keys.push(caches[text].get(&self.names[text], name));
@@ -156,10 +162,10 @@ impl ArrowLayout {
                 } else {
                     let (values, valid) = &mut chunk.numbers[number];
                     let start = values.len();
-                    values.extend(block.column(i).iter().map(|cell| match *cell {
-                        Cell::Number(x) => x,
-                        Cell::Text(_) => f64::NAN,
-                    }));
+                    match block.column(i) {
+                        Column::Numbers(numbers) => values.extend_from_slice(numbers),
+                        Column::Cells(cells) => values.extend(cells.iter().map(|cell| cell.number())),
+                    }
                     // Every point answered with a finite value (the common
                     // block) in one step; else a null, with a zero, at each
                     // other.
