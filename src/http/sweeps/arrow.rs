@@ -13,8 +13,9 @@ use std::sync::{Arc, Mutex};
 use arrow_array::builder::NullBufferBuilder;
 use arrow_array::types::Int16Type;
 use arrow_array::{ArrayRef, DictionaryArray, Float64Array, Int16Array, RecordBatch, StringArray};
-use arrow_ipc::writer::{DictionaryHandling, IpcWriteOptions, StreamWriter};
+use arrow_ipc::writer::{DictionaryHandling, IpcWriteOptions, StreamEncoder};
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
+use axum::body::Bytes;
 
 use super::stream::Sink;
 use crate::quantity::Output;
@@ -23,6 +24,10 @@ use crate::sweep::{Cell, Column, Sweep, SweepCase};
 /// Bytes of column data per record batch (about): large enough that the IPC
 /// framing is noise, small enough that a stream holds a few MiB.
 const BATCH_BYTES: u64 = 1 << 20;
+
+/// An IPC buffer at least this large is sent as it is; smaller ones are
+/// gathered with their neighbours.
+const HANDED_OVER_BYTES: usize = 16 * 1024;
 
 /// The names one dictionary column has met, in order of first appearance:
 /// their positions are the keys, shared by every worker.
@@ -212,7 +217,8 @@ impl ArrowLayout {
 /// deltas) per chunk, then the end-of-stream marker.
 pub(super) struct ArrowSink {
     layout: Arc<ArrowLayout>,
-    writer: Option<StreamWriter<Vec<u8>>>,
+    /// The IPC stream's encoder, made by [`Sink::header`].
+    encoder: Option<StreamEncoder>,
     /// Each name column's dictionary as last sent (reused while no name is new).
     dictionaries: Vec<ArrayRef>,
 }
@@ -221,7 +227,7 @@ impl ArrowSink {
     pub(super) fn new(layout: Arc<ArrowLayout>) -> Self {
         ArrowSink {
             layout,
-            writer: None,
+            encoder: None,
             dictionaries: Vec::new(),
         }
     }
@@ -265,29 +271,44 @@ impl ArrowSink {
 }
 
 impl Sink<ArrowChunk> for ArrowSink {
+    /// Nothing: the encoder puts the schema message before the first batch
+    /// (or the end-of-stream marker of a sweep with no batch).
     fn header(&mut self) -> Vec<u8> {
         let options = IpcWriteOptions::default().with_dictionary_handling(DictionaryHandling::Delta);
-        let mut writer = StreamWriter::try_new_with_options(Vec::new(), &self.layout.schema, options)
-            .expect("an IPC schema message");
-        let header = std::mem::take(writer.get_mut());
-        self.writer = Some(writer);
-        header
+        self.encoder =
+            Some(StreamEncoder::try_new_with_options(&self.layout.schema, options).expect("an IPC schema"));
+        Vec::new()
     }
 
-    fn encode(&mut self, chunk: ArrowChunk) -> Vec<u8> {
+    /// The batch's messages as the encoder built them: each column's values
+    /// handed over, not copied; the small pieces between them (framing,
+    /// message headers, validity) gathered into one piece each run, so a
+    /// batch is a few body frames, not dozens.
+    fn encode(&mut self, chunk: ArrowChunk) -> Vec<Bytes> {
         let batch = self.batch(chunk);
-        let writer = self.writer.as_mut().expect("the header is written first");
-        writer.write(&batch).expect("an IPC record batch");
-        // The next batch is about as large: its bytes are written into a
-        // buffer of this one's size, not one grown (and copied) step by step.
-        let bytes = writer.get_mut();
-        let next = Vec::with_capacity(bytes.len());
-        std::mem::replace(bytes, next)
+        let encoder = self.encoder.as_mut().expect("the header is written first");
+        let buffers = encoder.encode(&batch).expect("an IPC record batch");
+        let mut pieces = Vec::new();
+        let mut small = Vec::new();
+        for buffer in buffers {
+            if buffer.len() < HANDED_OVER_BYTES {
+                small.extend_from_slice(buffer.as_slice());
+            } else {
+                if !small.is_empty() {
+                    pieces.push(Bytes::from(std::mem::take(&mut small)));
+                }
+                pieces.push(Bytes::from(buffer));
+            }
+        }
+        if !small.is_empty() {
+            pieces.push(Bytes::from(small));
+        }
+        pieces
     }
 
     fn trailer(&mut self) -> Vec<u8> {
-        let writer = self.writer.as_mut().expect("the header is written first");
-        writer.finish().expect("the end-of-stream marker");
-        std::mem::take(writer.get_mut())
+        let encoder = self.encoder.take().expect("the header is written first");
+        let buffers = encoder.finish().expect("the end-of-stream marker");
+        buffers.iter().flat_map(|b| b.as_slice()).copied().collect()
     }
 }

@@ -113,8 +113,9 @@ impl Drop for ActiveStream {
 pub(super) trait Sink<T>: Send + 'static {
     /// The bytes before the first chunk.
     fn header(&mut self) -> Vec<u8>;
-    /// The bytes of one chunk.
-    fn encode(&mut self, chunk: T) -> Vec<u8>;
+    /// The bytes of one chunk, in one or more pieces (an encoder may hand
+    /// over the buffers it built rather than copy them into one).
+    fn encode(&mut self, chunk: T) -> Vec<Bytes>;
     /// The bytes after the last chunk.
     fn trailer(&mut self) -> Vec<u8> {
         Vec::new()
@@ -126,8 +127,8 @@ impl Sink<Vec<u8>> for RowWriter {
     fn header(&mut self) -> Vec<u8> {
         RowWriter::header(self)
     }
-    fn encode(&mut self, chunk: Vec<u8>) -> Vec<u8> {
-        chunk
+    fn encode(&mut self, chunk: Vec<u8>) -> Vec<Bytes> {
+        vec![Bytes::from(chunk)]
     }
 }
 
@@ -141,7 +142,7 @@ pub(super) fn drive<C, T, P, S>(
     produce: P,
     mut sink: S,
     stop: impl Fn() -> bool + Sync,
-    mut send: impl FnMut(Vec<u8>) -> bool,
+    mut send: impl FnMut(Vec<Bytes>) -> bool,
 ) -> bool
 where
     C: SweepCase,
@@ -149,7 +150,7 @@ where
     P: Fn(&Sweep<C>, Range<u64>) -> T + Sync,
     S: Sink<T>,
 {
-    if !send(sink.header()) {
+    if !send(vec![Bytes::from(sink.header())]) {
         return false;
     }
     let finished = sweep.run_parallel(
@@ -157,7 +158,7 @@ where
         |range| (!stop()).then(|| produce(sweep, range)),
         |chunk| chunk.is_some_and(|chunk| send(sink.encode(chunk))),
     );
-    finished && send(sink.trailer())
+    finished && send(vec![Bytes::from(sink.trailer())])
 }
 
 /// Streams a sweep through a bounded channel. The producer stops when the
@@ -179,18 +180,14 @@ where
     P: Fn(&Sweep<C>, Range<u64>) -> T + Send + Sync + 'static,
     S: Sink<T>,
 {
-    let (tx, rx) = mpsc::channel::<Bytes>(QUEUED_CHUNKS);
+    let (tx, rx) = mpsc::channel::<Vec<Bytes>>(QUEUED_CHUNKS);
     let complete = Arc::new(AtomicBool::new(false));
     let done = complete.clone();
     let runtime = tokio::runtime::Handle::current();
     let active = streams.start();
     tokio::task::spawn_blocking(move || {
         let (_active, _permit) = (active, permit);
-        let send = |bytes: Vec<u8>| {
-            runtime
-                .block_on(tx.send_timeout(Bytes::from(bytes), stall))
-                .is_ok()
-        };
+        let send = |pieces: Vec<Bytes>| runtime.block_on(tx.send_timeout(pieces, stall)).is_ok();
         if drive(&sweep, chunk_points, produce, sink, || tx.is_closed(), send) {
             done.store(true, Ordering::Release);
         } else {
@@ -207,14 +204,14 @@ where
 /// answer's memory goes with the sender, not with the queued chunks.
 pub(super) fn buffered(bytes: Vec<u8>, stall: Duration, permit: OwnedSemaphorePermit) -> Body {
     const CHUNK: usize = 256 * 1024;
-    let (tx, rx) = mpsc::channel::<Bytes>(QUEUED_CHUNKS);
+    let (tx, rx) = mpsc::channel::<Vec<Bytes>>(QUEUED_CHUNKS);
     let complete = Arc::new(AtomicBool::new(false));
     let done = complete.clone();
     tokio::spawn(async move {
         let _permit = permit;
         for chunk in bytes.chunks(CHUNK) {
             if tx
-                .send_timeout(Bytes::copy_from_slice(chunk), stall)
+                .send_timeout(vec![Bytes::copy_from_slice(chunk)], stall)
                 .await
                 .is_err()
             {
@@ -227,12 +224,14 @@ pub(super) fn buffered(bytes: Vec<u8>, stall: Duration, permit: OwnedSemaphorePe
     body_of(rx, complete)
 }
 
-/// The response body of chunks from `rx`: it ends cleanly once `complete`
-/// is set, and with an error when the sender stopped before its end.
-fn body_of(rx: mpsc::Receiver<Bytes>, complete: Arc<AtomicBool>) -> Body {
-    let stream = futures_util::stream::unfold((rx, complete), |(mut rx, complete)| async move {
+/// The response body of chunks from `rx`, each sent piece by piece: it
+/// ends cleanly once `complete` is set, and with an error when the sender
+/// stopped before its end.
+fn body_of(rx: mpsc::Receiver<Vec<Bytes>>, complete: Arc<AtomicBool>) -> Body {
+    use futures_util::StreamExt;
+    let chunks = futures_util::stream::unfold((rx, complete), |(mut rx, complete)| async move {
         match rx.recv().await {
-            Some(bytes) => Some((Ok::<_, std::io::Error>(bytes), (rx, complete))),
+            Some(pieces) => Some((Ok::<_, std::io::Error>(pieces), (rx, complete))),
             None if complete.load(Ordering::Acquire) => None,
             None => {
                 complete.store(true, Ordering::Release);
@@ -243,5 +242,12 @@ fn body_of(rx: mpsc::Receiver<Bytes>, complete: Arc<AtomicBool>) -> Body {
             }
         }
     });
-    Body::from_stream(stream)
+    let pieces = chunks.flat_map(|chunk| {
+        let pieces: Vec<Result<Bytes, std::io::Error>> = match chunk {
+            Ok(pieces) => pieces.into_iter().filter(|p| !p.is_empty()).map(Ok).collect(),
+            Err(e) => vec![Err(e)],
+        };
+        futures_util::stream::iter(pieces)
+    });
+    Body::from_stream(pieces)
 }
