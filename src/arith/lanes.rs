@@ -1,7 +1,8 @@
 //! Several points of a sweep evaluated together: [`Lanes`], `fast`'s first
-//! field ([`Filtered`] with the static bound alone) for `L` points at once,
-//! each operation applied lane by lane (straight-line code over arrays,
-//! which the compiler vectorises across the lanes).
+//! field for `L` points at once ([`Filtered`] with the static bound alone
+//! for the plane, with the running bound alone in space), each operation
+//! applied lane by lane (straight-line code over arrays, which the compiler
+//! vectorises across the lanes).
 //!
 //! The model runs in it unchanged. A decision is taken where every lane
 //! decides it the same way; where one lane cannot decide it, or two lanes
@@ -17,20 +18,20 @@ use std::cmp::Ordering;
 use super::filtered::Filtered;
 use crate::accuracy::{ErrorScales, ScaleKind};
 
-/// The field each lane is evaluated in: `fast`'s first ([`crate::impact`]'s `TightFast`).
-type Lane = Filtered<false, true>;
-
 /// The most lanes a [`Lanes`] value holds (the scales' storage).
 pub(crate) const MAX_LANES: usize = 4;
 
-/// `L` points' values of one expression, each with its static bound, kept
-/// part by part: the values `h`, the magnitudes `M`, and `λ`, which depends
-/// on the path alone (`filtered`'s module documentation), so one for all
-/// lanes.
+/// `L` points' values of one expression in `Filtered<RUNNING, STATIC>`
+/// (by default `fast`'s first field for the plane, `crate::impact`'s
+/// `TightFast`; in space its `LooseFast`), kept part by part: the values
+/// `h`, the magnitudes `M`, the running bounds `E` (zeros without
+/// `RUNNING`, which no rule reads), and `λ`, which depends on the path alone
+/// (`filtered`'s module documentation), so one for all lanes.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Lanes<const L: usize> {
+pub(crate) struct Lanes<const L: usize, const RUNNING: bool = false, const STATIC: bool = true> {
     h: [f64; L],
     m: [f64; L],
+    e: [f64; L],
     lambda: f64,
 }
 
@@ -65,11 +66,11 @@ pub(crate) fn measure_lanes_against(scales: &[ErrorScales]) {
     });
 }
 
-impl<const L: usize> Lanes<L> {
+impl<const L: usize, const RUNNING: bool, const STATIC: bool> Lanes<L, RUNNING, STATIC> {
     /// Lane `i` as a value of its own.
     #[inline(always)]
-    fn lane(&self, i: usize) -> Lane {
-        Lane::of_parts(self.h[i], self.m[i], self.lambda)
+    fn lane(&self, i: usize) -> Filtered<RUNNING, STATIC> {
+        Filtered::of_parts(self.h[i], self.m[i], self.lambda, self.e[i])
     }
 }
 
@@ -82,36 +83,38 @@ macro_rules! lanewise {
         let mut out = Lanes {
             h: [0.0; L],
             m: [0.0; L],
+            e: [0.0; L],
             lambda: 0.0,
         };
         for $i in 0..L {
-            let (h, m, lambda) = $rule.parts();
+            let (h, m, lambda, e) = $rule.parts();
             out.h[$i] = h;
             out.m[$i] = m;
+            out.e[$i] = e;
             out.lambda = lambda;
         }
         out
     }};
 }
 
-impl<const L: usize> super::Field for Lanes<L> {
+impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for Lanes<L, RUNNING, STATIC> {
     type Undecided = Diverged;
 
     const LANES: usize = L;
 
     #[inline(always)]
     fn of(x: f64) -> Self {
-        lanewise!(|_i| Lane::exact(x))
+        lanewise!(|_i| Filtered::<RUNNING, STATIC>::exact(x))
     }
     #[inline(always)]
     fn of_lanes(x: impl Fn(usize) -> f64) -> Self {
-        lanewise!(|i| Lane::exact(x(i)))
+        lanewise!(|i| Filtered::<RUNNING, STATIC>::exact(x(i)))
     }
     #[inline(always)]
     fn quotient_of_lanes(q: impl Fn(usize) -> (f64, f64, f64)) -> Self {
         lanewise!(|i| {
             let (num, den, rounded) = q(i);
-            <Lane as super::Field>::quotient_of(num, den, rounded)
+            <Filtered<RUNNING, STATIC> as super::Field>::quotient_of(num, den, rounded)
         })
     }
     #[inline(always)]
@@ -136,7 +139,7 @@ impl<const L: usize> super::Field for Lanes<L> {
     }
     #[inline(always)]
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
-        lanewise!(|_i| <Lane as super::Field>::quotient_of(num, den, rounded))
+        lanewise!(|_i| <Filtered<RUNNING, STATIC> as super::Field>::quotient_of(num, den, rounded))
     }
     #[inline(always)]
     fn neg(&self) -> Self {
@@ -218,5 +221,22 @@ impl<const L: usize> super::Field for Lanes<L> {
     }
     fn approx(&self) -> f64 {
         self.h[0]
+    }
+}
+
+/// Every lane's root, or [`Diverged`] where one lane's radicand is too
+/// uncertain ([`Filtered::sqrt`]).
+impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Radical for Lanes<L, RUNNING, STATIC> {
+    #[inline(always)]
+    fn sqrt(&self) -> Result<Self, Diverged> {
+        let mut rooted = true;
+        let root = lanewise!(|i| match self.lane(i).sqrt() {
+            Ok(root) => root,
+            Err(_) => {
+                rooted = false;
+                self.lane(i)
+            }
+        });
+        if rooted { Ok(root) } else { Err(Diverged) }
     }
 }

@@ -96,16 +96,9 @@ fn finite_output<U>(output: Output, v: f64) -> Result<f64, Fail<U>> {
     }
 }
 
-/// `x √y` correctly rounded, or its refusal beyond the f64 range.
-#[inline(always)]
-pub(crate) fn out_times_sqrt<N: Field>(output: Output, x: &N, y: &N) -> Exact<N, f64> {
-    let v = x
-        .round_output_times_sqrt(y, output.scale_kind())
-        .map_err(Fail::Undecided)?;
-    finite_output(output, v)
-}
-
-/// [`out_times_sqrt`] of each of `L` lanes ([`Field::lanes_output_times_sqrt`]).
+/// `x √y` correctly rounded (in `fast`, within the promised error), or its
+/// refusal beyond the f64 range, of each of `L` lanes
+/// ([`Field::lanes_output_times_sqrt`]; `[x √y]` for a field of one point).
 #[inline(always)]
 pub(crate) fn outs_times_sqrt<N: Field, const L: usize>(output: Output, x: &N, y: &N) -> Exact<N, [f64; L]> {
     let mut values = [0.0; L];

@@ -10,6 +10,17 @@ pub(super) fn vector<N: Field>(x: [f64; 3]) -> V3<N> {
     [N::of(x[0]), N::of(x[1]), N::of(x[2])]
 }
 
+/// The vector `x(i)` of each lane `i` (in a field of one point, [`vector`]
+/// of `x(0)`).
+#[inline(always)]
+pub(super) fn lanes_vector<N: Field>(x: impl Fn(usize) -> [f64; 3]) -> V3<N> {
+    [
+        N::of_lanes(|i| x(i)[0]),
+        N::of_lanes(|i| x(i)[1]),
+        N::of_lanes(|i| x(i)[2]),
+    ]
+}
+
 #[inline(always)]
 pub(super) fn dot<N: Field>(a: &V3<N>, b: &V3<N>) -> N {
     a[0].mul_add(&b[0], &a[1].mul_add(&b[1], &a[2].mul(&b[2])))

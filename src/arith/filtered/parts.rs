@@ -1,18 +1,18 @@
-//! The static bound's value taken apart and put together again, for
+//! A value taken apart and put together again, for
 //! [`super::super::Lanes`], which keeps each part lane by lane.
 
 use super::Filtered;
 
-impl Filtered<false, true> {
-    /// `(h, M, λ)`.
+impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
+    /// `(h, M, λ, E)` (`E` is `0` without `RUNNING`).
     #[inline(always)]
-    pub(in crate::arith) fn parts(&self) -> (f64, f64, f64) {
-        (self.h, self.m, self.lambda)
+    pub(in crate::arith) fn parts(&self) -> (f64, f64, f64, f64) {
+        (self.h, self.m, self.lambda, self.e)
     }
 
-    /// The value whose [`Filtered::parts`] are `(h, m, lambda)`.
+    /// The value whose [`Filtered::parts`] are `(h, m, lambda, e)`.
     #[inline(always)]
-    pub(in crate::arith) fn of_parts(h: f64, m: f64, lambda: f64) -> Self {
-        Filtered { h, m, lambda, e: 0.0 }
+    pub(in crate::arith) fn of_parts(h: f64, m: f64, lambda: f64, e: f64) -> Self {
+        Filtered { h, m, lambda, e }
     }
 }

@@ -6,13 +6,13 @@ use std::cmp::Ordering;
 use std::fmt;
 
 use super::approach::{approach_bound, approaches};
-use super::{Arithmetic, Case, LooseFast, Model, Stage, StaticBounds, evaluate_contact};
+use super::{Arithmetic, Case, LANES, LooseFast, Model, Stage, StaticBounds, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::{Compensated, Field, Fraction, Radical};
+use crate::arith::{Compensated, Field, Fraction, Lanes, Radical};
 use crate::error::{ImpactError, Input, Output, Result, finite, in_range, positive};
 use crate::input::{Law, RigidBody, SpatialImpact, Twist};
 use crate::model::Exact;
-use crate::model::spatial::{Geometry, approach, leading_minors, spatial};
+use crate::model::spatial::{Geometry, approach, leading_minors, spatial, spatial_lanes};
 use crate::outcome::{Outputs, SPATIAL_BODY_OUTPUTS, SpatialOutcome};
 
 /// The inputs of each body, in request order: parts of the case's declaration.
@@ -219,16 +219,27 @@ impl SpatialImpact {
 /// What a sweep's points share, formed once: each body's tensor checks
 /// when no axis changes that tensor, and the geometry ([`Prepared`]) when
 /// axes change inputs but no mass, tensor, position, the contact point or
-/// the normal, and those are valid and in the fast range.
+/// the normal, and those are valid and in the fast range (and in lanes of
+/// `fast`'s first field too, when the axes change only the bodies'
+/// velocities, so that lanes share the law as well).
 #[derive(Clone)]
 pub struct Fixed {
     tensors: [Option<Result<()>>; 2],
     /// Boxed: a sweep holds one, and it is larger than the rest of the sweep.
     geometry: Option<Box<Prepared>>,
+    lanes: Option<Box<Geometry<MotionLanes>>>,
 }
 
 /// The geometry a sweep forms once.
 type Prepared = super::Prepared<Geometry<LooseFast>, Geometry<Compensated>>;
+
+/// Lanes of [`LooseFast`], the field `fast` evaluates a contact in space in first.
+type MotionLanes = Lanes<LANES, true, false>;
+
+/// Whether `input` is a velocity or an angular velocity of either body.
+fn is_motion(input: Input) -> bool {
+    BODY_INPUTS.iter().any(|body| body[10..].contains(&input))
+}
 
 impl fmt::Debug for Fixed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -396,7 +407,59 @@ impl Case for SpatialImpact {
         } else {
             self.prepared(&tensors)
         };
-        Fixed { tensors, geometry }
+        // Formed as the others are (`Geometry::new` of the same inputs),
+        // so each lane is `fast`'s first field's geometry.
+        let lanes = match &geometry {
+            Some(_) if swept.iter().all(|&i| is_motion(i)) => {
+                Some(Box::new(crate::kernels::run(|| Geometry::new(self))))
+            }
+            _ => None,
+        };
+        Fixed {
+            tensors,
+            geometry,
+            lanes,
+        }
+    }
+
+    /// A sweep over the bodies' velocities alone, its geometry formed once.
+    #[inline(always)]
+    fn in_lanes(fixed: &Fixed) -> bool {
+        fixed.lanes.is_some()
+    }
+
+    /// The points of a sweep over the bodies' velocities, in lanes: each
+    /// validated as its single solve validates it, its approach decided in
+    /// f64 and every input of the bodies in this case's fast range (else
+    /// the points are solved one by one).
+    #[inline(always)]
+    fn evaluate_lanes(
+        impacts: &[Self; LANES],
+        fixed: &Fixed,
+        outputs: Outputs,
+        out: &mut [SpatialOutcome; LANES],
+    ) -> bool {
+        let Some(geometry) = fixed.lanes.as_deref() else {
+            return false;
+        };
+        let mut valid = *impacts;
+        let mut scales = [ErrorScales::UNPROMISED; LANES];
+        for ((point, scale), impact) in valid.iter_mut().zip(&mut scales).zip(impacts) {
+            debug_assert_eq!(impact.b.is_some(), impacts[0].b.is_some());
+            match impact.validate(fixed) {
+                Ok((law, true)) if impact.bodies().all(|b| all_in_range(&b.values())) => point.law = law,
+                _ => return false,
+            }
+            *scale = impact.error_scales();
+        }
+        crate::arith::measure_lanes_against(&scales);
+        // A compiled body of its own, as the laminae's lanes
+        // (`impact::barrier`).
+        crate::kernels::run(
+            #[inline(always)]
+            || spatial_lanes::<MotionLanes, LANES>(&valid, Some(geometry), outputs, out),
+        )
+        .is_ok()
     }
 
     #[inline(always)]

@@ -40,6 +40,147 @@ fn impact(b: Option<RigidBody>, torsion: Option<Twist>) -> SpatialImpact {
 /// geometry input forms it per point.
 #[test]
 fn a_geometry_formed_once_answers_as_one_formed_per_point() {
+    let laws = crate::impact::testing::one_law_of_each_kind();
+    let twist = Twist {
+        restitution: 0.1,
+        friction: 0.2,
+        pitch_radius: 0.004,
+    };
+    let axes: [(Input, &[f64]); 3] = [
+        (Input::VelocityAX, &[-3.0, 0.0, 0.5, 20.0]),
+        (Input::VelocityAZ, &[-10.0, -1e-3, 0.0, 1.0]),
+        (Input::AngularVelocityAY, &[-900.0, 0.0, 300.0]),
+    ];
+    let mut answered = 0;
+    for base in scenes() {
+        for law in laws {
+            for torsion in [None, Some(twist)] {
+                let base = SpatialImpact { law, torsion, ..base };
+                answered += crate::impact::testing::formed_once_answers_as_per_point(
+                    &base,
+                    &axes,
+                    Input::PositionAZ,
+                    |fixed: &Fixed| fixed.geometry.is_some(),
+                );
+            }
+        }
+    }
+    // Half the points approach (2,304 in all, both precisions), and most
+    // of those are answered (the two-phase laws refuse a twist law); the
+    // rest are refused alike.
+    assert!(answered >= 800, "{answered}");
+}
+
+/// Blocks of sweeps over the bodies' velocities through the sweep's door
+/// ([`Solver::solve_block_into`]), in both scenes, under a law of each
+/// kind, with and without a twist law, with every output and the fewest:
+/// each point's answer or refusal is its single solve's, whether answered
+/// in lanes (most groups of four) or one by one (lanes that disagree, a
+/// refusal, a spin beyond the fast range, a tail).
+#[test]
+fn a_block_answers_each_point_as_its_single_solve() {
+    use crate::impact::testing::block_answers_as_single_solves;
+    let twist = Twist {
+        restitution: 0.1,
+        friction: 0.2,
+        pitch_radius: 0.004,
+    };
+    let swept = [Input::VelocityAX, Input::VelocityAZ, Input::AngularVelocityAY];
+    let (mut together, mut groups) = (0, 0);
+    for base in scenes() {
+        for law in crate::impact::testing::one_law_of_each_kind() {
+            for torsion in [None, Some(twist)] {
+                let base = SpatialImpact { law, torsion, ..base };
+                let points: Vec<SpatialImpact> = (0..27)
+                    .map(|k| {
+                        let mut p = base;
+                        let k = k as f64;
+                        // Forward slip that falls to none and turns back.
+                        p.a.velocity[0] = 20.0 - 1.5 * k;
+                        p.a.angular_velocity[1] = 300.0 - 12.5 * k;
+                        match k as usize {
+                            5 => p.a.velocity[2] = 30.0,
+                            11 => p.a.velocity[0] = f64::NAN,
+                            17 => p.a.angular_velocity[1] = 1e300,
+                            20 => p.a.velocity[0] = 0.0,
+                            _ => {}
+                        }
+                        p
+                    })
+                    .collect();
+                for outputs in [Outputs::ALL, Outputs::MINIMAL] {
+                    let solver = Solver::new(&base, &swept, outputs, Precision::Fast);
+                    assert!(solver.in_lanes());
+                    let refused = block_answers_as_single_solves(&solver, &points);
+                    let two_phases =
+                        matches!(law, Law::KineticRestitution { .. } | Law::KineticFriction { .. });
+                    if two_phases && torsion.is_some() {
+                        // A two-phase law refuses a twist law, at every point.
+                        assert_eq!(refused.len(), points.len());
+                        continue;
+                    }
+                    // Point 5 separates; point 11's velocity is not a number.
+                    assert!(refused.starts_with(&[5, 11]), "{refused:?} under {law:?}");
+                    for group in points.chunks_exact(LANES) {
+                        let group: &[SpatialImpact; LANES] = group.try_into().expect("four");
+                        let mut out = [SpatialOutcome::default(); LANES];
+                        if SpatialImpact::evaluate_lanes(group, &solver.fixed, outputs, &mut out) {
+                            together += 1;
+                        }
+                        groups += 1;
+                    }
+                }
+            }
+        }
+    }
+    // The groups with points 5, 11 and 17 (three of six) never run
+    // together; of the others, four in five or more do (108 of 120).
+    assert!(
+        together * 5 >= groups * 2,
+        "{together} of {groups} groups together"
+    );
+}
+
+/// Lanes answer a sweep over the bodies' velocities alone, its geometry
+/// formed once, in `fast` alone.
+#[test]
+fn which_solvers_run_lanes() {
+    let [ball, blocks] = scenes();
+    let solver = |base: &SpatialImpact, swept: &[Input], precision| {
+        Solver::new(base, swept, Outputs::ALL, precision).in_lanes()
+    };
+    assert!(solver(
+        &ball,
+        &[Input::VelocityAX, Input::AngularVelocityAY],
+        Precision::Fast
+    ));
+    assert!(solver(
+        &blocks,
+        &[Input::VelocityBZ, Input::AngularVelocityAX],
+        Precision::Fast
+    ));
+    assert!(!solver(&ball, &[Input::VelocityAX], Precision::Exact));
+    assert!(!solver(
+        &ball,
+        &[Input::VelocityAX, Input::Friction],
+        Precision::Fast
+    ));
+    assert!(!solver(
+        &ball,
+        &[Input::VelocityAX, Input::MassA],
+        Precision::Fast
+    ));
+    assert!(!solver(
+        &blocks,
+        &[Input::VelocityAX, Input::PitchRadius],
+        Precision::Fast
+    ));
+    assert!(!solver(&ball, &[], Precision::Fast));
+}
+
+/// A tennis ball on a level court, and a block on a plate on a tilted
+/// normal, under a law the tests replace.
+fn scenes() -> [SpatialImpact; 2] {
     let sphere = 2.0 / 3.0 * 0.057 * 0.033 * 0.033;
     let ball = RigidBody {
         mass: 0.057,
@@ -62,45 +203,21 @@ fn a_geometry_formed_once_answers_as_one_formed_per_point() {
         velocity: [0.0, 0.0, 0.1],
         angular_velocity: [0.0, 0.0, 0.0],
     };
-    let scenes = [
-        (ball, None, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-        (block, Some(plate), [0.01, 0.0, 0.0], [0.1, 0.0, 1.0]),
-    ];
-    let laws = crate::impact::testing::one_law_of_each_kind();
-    let twist = Twist {
-        restitution: 0.1,
-        friction: 0.2,
-        pitch_radius: 0.004,
+    let law = Law::Friction {
+        restitution: 0.75,
+        friction: 0.6,
     };
-    let axes: [(Input, &[f64]); 3] = [
-        (Input::VelocityAX, &[-3.0, 0.0, 0.5, 20.0]),
-        (Input::VelocityAZ, &[-10.0, -1e-3, 0.0, 1.0]),
-        (Input::AngularVelocityAY, &[-900.0, 0.0, 300.0]),
-    ];
-    let mut answered = 0;
-    for (a, b, point, normal) in scenes {
-        for law in laws {
-            for torsion in [None, Some(twist)] {
-                let base = SpatialImpact {
-                    a,
-                    b,
-                    contact: SpatialContact { point, normal },
-                    law,
-                    torsion,
-                };
-                answered += crate::impact::testing::formed_once_answers_as_per_point(
-                    &base,
-                    &axes,
-                    Input::PositionAZ,
-                    |fixed: &Fixed| fixed.geometry.is_some(),
-                );
-            }
-        }
-    }
-    // Half the points approach (2,304 in all, both precisions), and most
-    // of those are answered (the two-phase laws refuse a twist law); the
-    // rest are refused alike.
-    assert!(answered >= 800, "{answered}");
+    let scene = |a, b, point, normal| SpatialImpact {
+        a,
+        b,
+        contact: SpatialContact { point, normal },
+        law,
+        torsion: None,
+    };
+    [
+        scene(ball, None, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        scene(block, Some(plate), [0.01, 0.0, 0.0], [0.1, 0.0, 1.0]),
+    ]
 }
 
 /// A tensor checked once for a sweep gives its refusal at every point,

@@ -23,11 +23,11 @@ use super::*;
 
 /// The answer of the two-phase law: regime `prescribed`, no couple.
 #[inline(always)]
-pub(super) fn kinetic<N: Radical>(
+pub(super) fn kinetic<N: Radical, const L: usize>(
     sc: &mut Scene<'_, N>,
     phases: Phases,
     outputs: Outputs,
-    outcome: &mut SpatialOutcome,
+    outcome: &mut [SpatialOutcome; L],
 ) -> Exact<N, ()> {
     let (r, mu_r) = (phases.r, phases.rebound);
     let rebound = r > 0.0;
@@ -146,23 +146,23 @@ pub(super) fn kinetic<N: Radical>(
     // |P_t| / P_n: (μ_A + R μ_R) / (1 + R) along the one direction; of the
     // impulse itself after a sticking approach.
     let impulse_ratio = if kept {
-        sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0)
+        sc.ratio::<L>(&s, Output::ImpulseRatio)?.unwrap_or([0.0; L])
     } else if along.is_some() {
         let one = N::of(1.0);
         let mu_a = if sliding { mu_a } else { 0.0 };
         let ratio = N::of(r)
             .mul_add(&N::of(if rebound { mu_r } else { 0.0 }), &N::of(mu_a))
             .div(&one.add(&N::of(r)));
-        out(Output::ImpulseRatio, &ratio)?
+        outs::<N, L>(Output::ImpulseRatio, &ratio)?
     } else {
-        0.0
+        [0.0; L]
     };
     // μ_c of the sticking impulse with the equivalent e (rule 5).
     let critical_impulse_ratio = if outputs.critical_impulse_ratio {
         let q = N::of(1.0).add(&e).mul(&sc.un).neg();
         let target = axpy(&q.div(&sc.g.nu), &sc.g.n, &neg(&sc.ut));
         let stick = divide(&sym_mul(&sc.g.adj, &target), &sc.g.det);
-        sc.ratio(&sc.solution(stick, zero), Output::CriticalImpulseRatio)?
+        sc.ratio::<L>(&sc.solution(stick, zero), Output::CriticalImpulseRatio)?
     } else {
         None
     };

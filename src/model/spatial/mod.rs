@@ -39,7 +39,7 @@ mod scene;
 
 use std::cmp::Ordering;
 
-use super::{Exact, Fail, abs, half, out, out_times_sqrt, sign};
+use super::{Exact, Fail, abs, half, outs, outs_times_sqrt, sign};
 use crate::arith::{Field, Radical};
 use crate::error::{ImpactError, Input, Output};
 use crate::input::{RigidBody, SpatialImpact, Twist};
@@ -99,15 +99,37 @@ pub(crate) fn spatial<N: Radical>(
     outputs: Outputs,
     outcome: &mut SpatialOutcome,
 ) -> Exact<N, ()> {
+    spatial_lanes::<N, 1>(
+        std::array::from_ref(impact),
+        prepared,
+        outputs,
+        std::array::from_mut(outcome),
+    )
+}
+
+/// The validated contacts of `L` points in a field of `L` lanes
+/// ([`crate::arith::Lanes`]): points of one sweep that differ in the
+/// bodies' velocities alone, the law read from the first. Every outcome
+/// written, or an error (in lanes, that the points are to be solved one by
+/// one); each output of every lane is tested, in [`spatial`]'s order,
+/// before any outcome is written.
+#[inline(always)]
+pub(crate) fn spatial_lanes<N: Radical, const L: usize>(
+    impacts: &[SpatialImpact; L],
+    prepared: Option<&Geometry<N>>,
+    outputs: Outputs,
+    outcome: &mut [SpatialOutcome; L],
+) -> Exact<N, ()> {
+    debug_assert_eq!(N::LANES, L);
     let formed;
     let geometry = match prepared {
         Some(geometry) => geometry,
         None => {
-            formed = Geometry::new(impact);
+            formed = Geometry::new(&impacts[0]);
             &formed
         }
     };
-    let mut sc = Scene::<N>::new(impact, geometry);
+    let mut sc = Scene::<N>::new(impacts, geometry);
     if sign(&sc.un)? != Ordering::Less {
         return Err(ImpactError::NotApproaching {
             input: Input::VelocityA,
@@ -167,15 +189,15 @@ pub(crate) fn spatial<N: Radical>(
         .into());
     }
     let impulse_ratio = match t {
-        Tangential::Kept => sc.ratio(&s, Output::ImpulseRatio)?.unwrap_or(0.0),
+        Tangential::Kept => sc.ratio::<L>(&s, Output::ImpulseRatio)?.unwrap_or([0.0; L]),
         // |P_t| = c P_n exactly, unless there is no direction to slide in.
-        Tangential::Sliding if sign(&norm2(&s.pt))? == Ordering::Equal => 0.0,
-        Tangential::Sliding => out(Output::ImpulseRatio, &N::of(sc.law.c))?,
+        Tangential::Sliding if sign(&norm2(&s.pt))? == Ordering::Equal => [0.0; L],
+        Tangential::Sliding => outs::<N, L>(Output::ImpulseRatio, &N::of(sc.law.c))?,
     };
     let critical_impulse_ratio = if outputs.critical_impulse_ratio || regime == Regime::Sticking {
         let stick = sc.solve(Tangential::Kept, z, 0.0)?;
         match stick {
-            Some(stick) => sc.ratio(&stick, Output::CriticalImpulseRatio)?,
+            Some(stick) => sc.ratio::<L>(&stick, Output::CriticalImpulseRatio)?,
             None => None,
         }
     } else {
@@ -199,8 +221,9 @@ pub(crate) fn spatial<N: Radical>(
     write(&sc, answer, outputs, outcome)
 }
 
-/// An answer ready to be written: the impulse and what the law says of it.
-struct Written<N> {
+/// An answer ready to be written: the impulse and what the law says of it
+/// (its ratios in each of `L` lanes).
+struct Written<N, const L: usize> {
     s: Solution<N>,
     /// `e`, or the equivalent `e = −U_n/u_n` of the two-phase law.
     e: N,
@@ -208,8 +231,8 @@ struct Written<N> {
     final_spin: N,
     /// `P·(u + U) + κ (s̃ + S̃)`, checked `≤ 0`.
     work: N,
-    impulse_ratio: f64,
-    critical_impulse_ratio: Option<f64>,
+    impulse_ratio: [f64; L],
+    critical_impulse_ratio: Option<[f64; L]>,
     regime: Regime,
     torsional_regime: Option<TorsionalRegime>,
 }
@@ -220,13 +243,13 @@ fn on_body<N: Field>(index: usize, x: N) -> N {
     if index == 0 { x } else { x.neg() }
 }
 
-/// Writes an answer's outputs to `outcome`, whole or not at all.
+/// Writes an answer's outputs to each lane's `outcome`, whole or not at all.
 #[inline(always)]
-fn write<N: Radical>(
+fn write<N: Radical, const L: usize>(
     sc: &Scene<'_, N>,
-    answer: Written<N>,
+    answer: Written<N, L>,
     outputs: Outputs,
-    outcome: &mut SpatialOutcome,
+    outcome: &mut [SpatialOutcome; L],
 ) -> Exact<N, ()> {
     let Written {
         s,
@@ -239,7 +262,7 @@ fn write<N: Radical>(
         regime,
         torsional_regime,
     } = answer;
-    let mut bodies = [SpatialBodyOutcome::default(); 2];
+    let mut bodies = [[SpatialBodyOutcome::default(); 2]; L];
     let p2 = norm2(&s.p);
     for (index, (b, motion)) in sc.g.bodies.iter().zip(&sc.motion).enumerate() {
         let names = &SPATIAL_BODY_OUTPUTS[index];
@@ -254,80 +277,104 @@ fn write<N: Radical>(
             #[inline(always)]
             |x| on_body(index, x.clone()),
         );
-        bodies[index] = SpatialBodyOutcome {
-            velocity: Scene::<N>::vector_out(three(names, 0), &add(&motion.v, &dv))?,
-            angular_velocity: Scene::<N>::vector_out(three(names, 3), &add(&motion.w, &dw))?,
-            velocity_change: Scene::<N>::vector_out(three(names, 6), &dv)?,
-            delta_v: out_times_sqrt(names[9], &b.inv_m, &p2)?,
-            angular_velocity_change: Scene::<N>::vector_out(three(names, 10), &dw)?,
-        };
+        let velocity = Scene::<N>::vector_out::<L>(three(names, 0), &add(&motion.v, &dv))?;
+        let angular_velocity = Scene::<N>::vector_out::<L>(three(names, 3), &add(&motion.w, &dw))?;
+        let velocity_change = Scene::<N>::vector_out::<L>(three(names, 6), &dv)?;
+        let delta_v = outs_times_sqrt::<N, L>(names[9], &b.inv_m, &p2)?;
+        let angular_velocity_change = Scene::<N>::vector_out::<L>(three(names, 10), &dw)?;
+        for (lane, body) in bodies.iter_mut().enumerate() {
+            body[index] = SpatialBodyOutcome {
+                velocity: velocity[lane],
+                angular_velocity: angular_velocity[lane],
+                velocity_change: velocity_change[lane],
+                delta_v: delta_v[lane],
+                angular_velocity_change: angular_velocity_change[lane],
+            };
+        }
     }
-    let contact_velocity = SpatialContactVelocities {
-        initial: sc.contact_velocity_at(
-            [
-                Output::InitialNormalContactVelocity,
-                Output::InitialTangentialContactVelocityX,
-                Output::InitialTangentialContactVelocityY,
-                Output::InitialTangentialContactVelocityZ,
-                Output::InitialContactSpin,
-            ],
-            &sc.un,
-            &sc.ut,
-            &sc.s,
-        )?,
-        r#final: sc.contact_velocity_at(
-            [
-                Output::FinalNormalContactVelocity,
-                Output::FinalTangentialContactVelocityX,
-                Output::FinalTangentialContactVelocityY,
-                Output::FinalTangentialContactVelocityZ,
-                Output::FinalContactSpin,
-            ],
-            &e.mul(&sc.un).neg(),
-            &final_ut,
-            &final_spin,
-        )?,
-    };
-    let impulse = SpatialImpulse {
-        normal: sc.along(Output::NormalImpulse, &s.pn)?,
-        tangential: Scene::<N>::vector_out(
-            [
-                Output::TangentialImpulseX,
-                Output::TangentialImpulseY,
-                Output::TangentialImpulseZ,
-            ],
-            &s.pt,
-        )?,
-        torsional: out_times_sqrt(Output::TorsionalImpulse, &s.kappa, &sc.g.nu)?,
-        x: out(Output::ImpulseX, &s.p[0])?,
-        y: out(Output::ImpulseY, &s.p[1])?,
-        z: out(Output::ImpulseZ, &s.p[2])?,
-    };
+    let initial = sc.contact_velocity_at::<L>(
+        [
+            Output::InitialNormalContactVelocity,
+            Output::InitialTangentialContactVelocityX,
+            Output::InitialTangentialContactVelocityY,
+            Output::InitialTangentialContactVelocityZ,
+            Output::InitialContactSpin,
+        ],
+        &sc.un,
+        &sc.ut,
+        &sc.s,
+    )?;
+    let r#final = sc.contact_velocity_at::<L>(
+        [
+            Output::FinalNormalContactVelocity,
+            Output::FinalTangentialContactVelocityX,
+            Output::FinalTangentialContactVelocityY,
+            Output::FinalTangentialContactVelocityZ,
+            Output::FinalContactSpin,
+        ],
+        &e.mul(&sc.un).neg(),
+        &final_ut,
+        &final_spin,
+    )?;
+    let normal = sc.along::<L>(Output::NormalImpulse, &s.pn)?;
+    let tangential = Scene::<N>::vector_out::<L>(
+        [
+            Output::TangentialImpulseX,
+            Output::TangentialImpulseY,
+            Output::TangentialImpulseZ,
+        ],
+        &s.pt,
+    )?;
+    let torsional = outs_times_sqrt::<N, L>(Output::TorsionalImpulse, &s.kappa, &sc.g.nu)?;
+    let x = outs::<N, L>(Output::ImpulseX, &s.p[0])?;
+    let y = outs::<N, L>(Output::ImpulseY, &s.p[1])?;
+    let z = outs::<N, L>(Output::ImpulseZ, &s.p[2])?;
     let energy = if outputs.energy {
         let initial = sc.initial_energy();
         let loss = half::<N>().mul(&work).neg();
         let max_loss = sc.max_loss();
-        Some(PlanarEnergy {
-            initial: out(Output::InitialEnergy, &initial)?,
-            r#final: out(Output::FinalEnergy, &initial.sub(&loss))?.max(0.0),
-            loss: out(Output::EnergyLoss, &loss)?,
-            max_loss: out(Output::MaxEnergyLoss, &max_loss)?,
-            normalized_loss: out(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?.min(1.0),
-        })
+        Some([
+            outs::<N, L>(Output::InitialEnergy, &initial)?,
+            outs::<N, L>(Output::FinalEnergy, &initial.sub(&loss))?.map(|x| x.max(0.0)),
+            outs::<N, L>(Output::EnergyLoss, &loss)?,
+            outs::<N, L>(Output::MaxEnergyLoss, &max_loss)?,
+            outs::<N, L>(Output::NormalizedEnergyLoss, &loss.div(&max_loss))?.map(|x| x.min(1.0)),
+        ])
     } else {
         None
     };
-    *outcome = SpatialOutcome {
-        body_count: sc.g.bodies.len(),
-        bodies,
-        contact_velocity,
-        impulse,
-        impulse_ratio,
-        critical_impulse_ratio,
-        restitution: out(Output::Restitution, &e)?,
-        regime,
-        torsional_regime,
-        energy,
-    };
+    let restitution = outs::<N, L>(Output::Restitution, &e)?;
+    for (lane, outcome) in outcome.iter_mut().enumerate() {
+        *outcome = SpatialOutcome {
+            body_count: sc.g.bodies.len(),
+            bodies: bodies[lane],
+            contact_velocity: SpatialContactVelocities {
+                initial: initial[lane],
+                r#final: r#final[lane],
+            },
+            impulse: SpatialImpulse {
+                normal: normal[lane],
+                tangential: tangential[lane],
+                torsional: torsional[lane],
+                x: x[lane],
+                y: y[lane],
+                z: z[lane],
+            },
+            impulse_ratio: impulse_ratio[lane],
+            critical_impulse_ratio: critical_impulse_ratio.map(|ratio| ratio[lane]),
+            restitution: restitution[lane],
+            regime,
+            torsional_regime,
+            energy: energy.map(
+                |[initial, r#final, loss, max_loss, normalized_loss]| PlanarEnergy {
+                    initial: initial[lane],
+                    r#final: r#final[lane],
+                    loss: loss[lane],
+                    max_loss: max_loss[lane],
+                    normalized_loss: normalized_loss[lane],
+                },
+            ),
+        };
+    }
     Ok(())
 }

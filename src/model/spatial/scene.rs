@@ -40,11 +40,13 @@ pub(super) struct Motion<N> {
 }
 
 impl<N: Field> Motion<N> {
+    /// The motion of each lane's body, `body(i)` its velocity and angular
+    /// velocity at lane `i`.
     #[inline(always)]
-    fn new(body: &RigidBody) -> Self {
+    fn of_lanes(body: impl Fn(usize) -> ([f64; 3], [f64; 3])) -> Self {
         Motion {
-            v: vector(body.velocity),
-            w: vector(body.angular_velocity),
+            v: lanes_vector(|i| body(i).0),
+            w: lanes_vector(|i| body(i).1),
         }
     }
 
@@ -170,15 +172,24 @@ pub(super) struct Scene<'a, N> {
 }
 
 impl<'a, N: Radical> Scene<'a, N> {
-    /// The scene of a validated `impact` whose geometry is `g`.
+    /// The scene of validated `impacts` whose geometry is `g`, one in each
+    /// of the field's `L` lanes: points of one sweep that differ in the
+    /// bodies' velocities alone (the law and twist read are the first's).
     #[inline(always)]
-    pub(super) fn new(impact: &'a SpatialImpact, g: &'a Geometry<N>) -> Self {
-        let a = Motion::new(&impact.a);
+    pub(super) fn new<const L: usize>(impacts: &'a [SpatialImpact; L], g: &'a Geometry<N>) -> Self {
+        let impact = &impacts[0];
+        let a = Motion::of_lanes(|i| (impacts[i].a.velocity, impacts[i].a.angular_velocity));
         let mut u = a.contact_velocity(&g.bodies[0].r);
         let mut spin = a.w.clone();
         let b = match (&impact.b, g.bodies.get(1)) {
-            (Some(body), Some(inertial)) => {
-                let b = Motion::new(body);
+            (Some(_), Some(inertial)) => {
+                // Every lane has a body B where the first has (a sweep's
+                // points share the base's bodies).
+                let b = Motion::of_lanes(|i| {
+                    impacts[i]
+                        .b
+                        .map_or(([0.0; 3], [0.0; 3]), |b| (b.velocity, b.angular_velocity))
+                });
                 u = sub(&u, &b.contact_velocity(&inertial.r));
                 spin = sub(&spin, &b.w);
                 b
@@ -486,33 +497,37 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
-    /// (`None` when `P·n = 0`).
+    /// (`None` when `P·n = 0`), in each of `L` lanes.
     #[inline(always)]
-    pub(super) fn ratio(&self, s: &Solution<N>, output: Output) -> Exact<N, Option<f64>> {
+    pub(super) fn ratio<const L: usize>(
+        &self,
+        s: &Solution<N>,
+        output: Output,
+    ) -> Exact<N, Option<[f64; L]>> {
         if sign(&s.pn)? == Ordering::Equal {
             return Ok(None);
         }
         let size = self.g.nu.mul(&norm2(&s.pt));
-        Ok(Some(out_times_sqrt(
+        Ok(Some(outs_times_sqrt::<N, L>(
             output,
             &N::of(1.0).div(&abs(&s.pn)?),
             &size,
         )?))
     }
 
-    /// `x/|n|` correctly rounded.
+    /// `x/|n|` correctly rounded, in each of `L` lanes.
     #[inline(always)]
-    pub(super) fn along(&self, output: Output, x: &N) -> Exact<N, f64> {
-        out_times_sqrt(output, &x.div(&self.g.nu), &self.g.nu)
+    pub(super) fn along<const L: usize>(&self, output: Output, x: &N) -> Exact<N, [f64; L]> {
+        outs_times_sqrt::<N, L>(output, &x.div(&self.g.nu), &self.g.nu)
     }
 
+    /// A vector's three outputs, in each of `L` lanes.
     #[inline(always)]
-    pub(super) fn vector_out(outputs: [Output; 3], x: &V3<N>) -> Exact<N, [f64; 3]> {
-        Ok([
-            out(outputs[0], &x[0])?,
-            out(outputs[1], &x[1])?,
-            out(outputs[2], &x[2])?,
-        ])
+    pub(super) fn vector_out<const L: usize>(outputs: [Output; 3], x: &V3<N>) -> Exact<N, [[f64; 3]; L]> {
+        let x0 = outs::<N, L>(outputs[0], &x[0])?;
+        let x1 = outs::<N, L>(outputs[1], &x[1])?;
+        let x2 = outs::<N, L>(outputs[2], &x[2])?;
+        Ok(std::array::from_fn(|i| [x0[i], x1[i], x2[i]]))
     }
 
     /// `(U_t, u_t + U_t)` of an answer that changes `u` by `Δu`.
@@ -542,18 +557,21 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// The contact velocity at one instant (`u·n`, `u_t`, `s̃`) as outputs,
     /// named by its normal, slip (x, y, z) and spin outputs.
     #[inline(always)]
-    pub(super) fn contact_velocity_at(
+    pub(super) fn contact_velocity_at<const L: usize>(
         &self,
         [normal, x, y, z, spin]: [Output; 5],
         un: &N,
         ut: &V3<N>,
         s: &N,
-    ) -> Exact<N, SpatialContactVelocity> {
-        Ok(SpatialContactVelocity {
-            normal: self.along(normal, un)?,
-            tangential: Self::vector_out([x, y, z], ut)?,
-            spin: self.along(spin, s)?,
-        })
+    ) -> Exact<N, [SpatialContactVelocity; L]> {
+        let normal = self.along::<L>(normal, un)?;
+        let tangential = Self::vector_out::<L>([x, y, z], ut)?;
+        let spin = self.along::<L>(spin, s)?;
+        Ok(std::array::from_fn(|i| SpatialContactVelocity {
+            normal: normal[i],
+            tangential: tangential[i],
+            spin: spin[i],
+        }))
     }
 
     /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
