@@ -122,6 +122,19 @@ fn rounded_error(m: f64, carried: f64, h: f64) -> f64 {
     }
 }
 
+/// `x` where `keep`, else `otherwise`, by masks rather than a select, which
+/// the compiler may turn into a branch around an expensive operand (the
+/// static bound's quotient, in `Filtered::static_quotient_magnitude`):
+/// one branch per lane of `super::Lanes`. With masks, Figure 2's sweep in
+/// lanes takes 4–5 % fewer instructions a point (callgrind,
+/// docs/performance-log.md, 2026-12-07 (later)); the running bound's
+/// rules, with masks, took 8–10 % more in space, so they keep their selects.
+#[inline(always)]
+fn kept_or(keep: bool, x: f64, otherwise: f64) -> f64 {
+    let mask = u64::from(keep).wrapping_neg();
+    f64::from_bits((x.to_bits() & mask) | (otherwise.to_bits() & !mask))
+}
+
 thread_local! {
     /// The scales of the impact being evaluated ([`ErrorScales::by_kind`]),
     /// set by [`measure_against`] before each `fast` evaluation; zeros (the
@@ -364,14 +377,8 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
         let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
         let certified = y_low >= 0.5 * o.h.abs() && y_low > 0.0;
         let m = floored(q.abs().mul_add(o.m, self.m) * (1.0 + 4.0 * U) / y_low);
-        // Selects rather than branches: the bookkeeping stays straight-line.
-        if self.m == 0.0 {
-            0.0
-        } else if certified {
-            m
-        } else {
-            f64::INFINITY
-        }
+        // Masks rather than branches: the bookkeeping stays straight-line.
+        kept_or(self.m != 0.0, kept_or(certified, m, f64::INFINITY), 0.0)
     }
 
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
