@@ -178,18 +178,15 @@ impl<'a, N: Radical> Scene<'a, N> {
     #[inline(always)]
     pub(super) fn new<const L: usize>(impacts: &'a [SpatialImpact; L], g: &'a Geometry<N>) -> Self {
         let impact = &impacts[0];
-        let a = Motion::of_lanes(|i| (impacts[i].a.velocity, impacts[i].a.angular_velocity));
+        let motion = |b: &RigidBody| (b.velocity, b.angular_velocity);
+        let a = Motion::of_lanes(|i| motion(&impacts[i].a));
         let mut u = a.contact_velocity(&g.bodies[0].r);
         let mut spin = a.w.clone();
         let b = match (&impact.b, g.bodies.get(1)) {
             (Some(_), Some(inertial)) => {
                 // Every lane has a body B where the first has (a sweep's
                 // points share the base's bodies).
-                let b = Motion::of_lanes(|i| {
-                    impacts[i]
-                        .b
-                        .map_or(([0.0; 3], [0.0; 3]), |b| (b.velocity, b.angular_velocity))
-                });
+                let b = Motion::of_lanes(|i| impacts[i].b.as_ref().map_or(([0.0; 3], [0.0; 3]), motion));
                 u = sub(&u, &b.contact_velocity(&inertial.r));
                 spin = sub(&spin, &b.w);
                 b
