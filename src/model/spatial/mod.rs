@@ -121,6 +121,9 @@ pub(crate) fn spatial_lanes<N: Radical, const L: usize>(
     outcome: &mut [SpatialOutcome; L],
 ) -> Exact<N, ()> {
     debug_assert_eq!(N::LANES, L);
+    // Lanes share one geometry, formed once for the sweep: only a single
+    // point (L = 1) forms its own here, from its own impact.
+    debug_assert!(L == 1 || prepared.is_some());
     let formed;
     let geometry = match prepared {
         Some(geometry) => geometry,
