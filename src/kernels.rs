@@ -25,6 +25,13 @@
 //! profile of a release build that shows `fma` or a model function beside
 //! `kernels::v3` has a function left out (measured: 2.3× on a spatial solve
 //! with twist, 2.2× on two laminae in world axes).
+//!
+//! A debug build (the tests' build, unoptimised) compiles the portable copy
+//! alone and reports it ([`V3_COMPILED`]): unoptimised, the second copy runs
+//! no faster and made the library and its unit tests take about half as
+//! long again to build (docs/performance.md, "The CI's run time"). The two
+//! copies are compared with the release binary (`tests/kernels.rs` with
+//! `RESTITUTION_BINARY`, as `.ci/run` runs it).
 #![allow(unsafe_code)]
 
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -48,6 +55,10 @@ impl Kernels {
     }
 }
 
+/// Whether this build compiles the x86-64-v3 copy: on x86-64, in an
+/// optimised build (module documentation).
+pub const V3_COMPILED: bool = cfg!(all(target_arch = "x86_64", not(debug_assertions)));
+
 const UNDECIDED: u8 = 0;
 const PORTABLE: u8 = 1;
 const V3: u8 = 2;
@@ -67,7 +78,7 @@ pub fn selected() -> Kernels {
 
 #[cold]
 fn detect() -> Kernels {
-    let kernels = if cpu_has_v3() {
+    let kernels = if V3_COMPILED && cpu_has_v3() {
         Kernels::X86_64V3
     } else {
         Kernels::Portable
@@ -114,7 +125,7 @@ fn cpu_has_v3() -> bool {
 /// through here, do not pile their frames into one.
 #[inline(always)]
 pub(crate) fn run<R>(work: impl FnOnce() -> R) -> R {
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
     if selected() == Kernels::X86_64V3 {
         // SAFETY: `selected()` is `X86_64V3` only when `cpu_has_v3()` found
         // every feature `v3` is compiled with on this CPU.
@@ -132,7 +143,7 @@ fn portable<R>(work: impl FnOnce() -> R) -> R {
 /// `work` compiled for x86-64-v3; its callees are inlined into it where they
 /// are `#[inline]` (a function compiled for fewer features may be inlined
 /// into one compiled for more).
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
 #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,movbe,f16c,popcnt")]
 fn v3<R>(work: impl FnOnce() -> R) -> R {
     work()
