@@ -241,6 +241,7 @@ pub fn app_with(config: &ServiceConfig, state: AppState) -> Router {
         .merge(SwaggerUi::new("/docs").url("/openapi.json", openapi_for(config)))
         .merge(web::router());
     state.telemetry.set_recording(config.metrics);
+    state.telemetry.set_shedding_window(config.shedding_window_ms);
     // The probes outside the stack.
     stack(router, config, Some(state.telemetry.clone()))
         .route(HEALTHZ, axum::routing::get(healthz))

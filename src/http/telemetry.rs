@@ -133,13 +133,12 @@ struct Inner {
     started: Instant,
     /// Milliseconds since `started` of the last shed request (0: none).
     last_shed_ms: AtomicU64,
+    /// How long after a shed request the service reports not ready, in milliseconds.
+    shedding_window_ms: AtomicU64,
     draining: AtomicBool,
     /// Whether requests are recorded (`--metrics`).
     recording: AtomicBool,
 }
-
-/// How long after a shed request the service reports not ready, in milliseconds.
-const SHEDDING_WINDOW_MS: u64 = 1_000;
 
 impl Default for Telemetry {
     fn default() -> Self {
@@ -186,6 +185,7 @@ impl Default for Telemetry {
             sweep_points,
             started: Instant::now(),
             last_shed_ms: AtomicU64::new(0),
+            shedding_window_ms: AtomicU64::new(1_000),
             draining: AtomicBool::new(false),
             recording: AtomicBool::new(true),
         }))
@@ -196,6 +196,11 @@ impl Telemetry {
     /// Turns the per-request recording on or off.
     pub fn set_recording(&self, on: bool) {
         self.0.recording.store(on, Ordering::Relaxed);
+    }
+
+    /// Sets how long after a shed request `/readyz` answers 503, in milliseconds.
+    pub fn set_shedding_window(&self, ms: u64) {
+        self.0.shedding_window_ms.store(ms, Ordering::Relaxed);
     }
 
     /// Marks the service as draining: `/readyz` answers 503 from now on.
@@ -232,7 +237,8 @@ impl Telemetry {
         }
         let last = self.0.last_shed_ms.load(Ordering::Relaxed);
         let now = self.0.started.elapsed().as_millis() as u64;
-        (last > 0 && now.saturating_sub(last) < SHEDDING_WINDOW_MS).then_some("shedding")
+        let window = self.0.shedding_window_ms.load(Ordering::Relaxed);
+        (last > 0 && now.saturating_sub(last) < window).then_some("shedding")
     }
 
     /// The metrics in the Prometheus text format.
