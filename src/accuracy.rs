@@ -58,7 +58,7 @@ impl ErrorScales {
     }
 
     /// The scales by [`ScaleKind`].
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn by_kind(&self) -> [f64; 6] {
         [
             self.dimensionless,
@@ -95,7 +95,7 @@ impl ScalesOf {
     /// A body of `mass` with these velocity and spin components, its lever
     /// arm `arm` from its centre of mass to the contact (for the torsional
     /// case, the pitch radius).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn body(mut self, mass: f64, velocity: &[f64], spin: &[f64], arm: f64) -> Self {
         let spin = spin.iter().fold(0.0f64, |s, w| s.max(w.abs()));
         let velocity = velocity.iter().fold(0.0f64, |s, v| s.max(v.abs()));
@@ -111,7 +111,7 @@ impl ScalesOf {
 
     /// A lever arm of a couple that is no body's (a pitch radius): it
     /// scales angular impulses only.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn lever(mut self, arm: f64) -> Self {
         self.max_arm = self.max_arm.max(arm);
         self
@@ -120,7 +120,7 @@ impl ScalesOf {
     /// The scales: `S_v`; `S_ω` the largest spin and `S_v` over the shortest
     /// non-zero arm; `S_J = m_min S_v`; `S_M = S_J` times the longest arm;
     /// `S_T = S_J S_v`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn scales(self) -> ErrorScales {
         let impulse = self.min_mass * self.velocity;
         ErrorScales {
@@ -199,7 +199,7 @@ const KINDS: [ScaleKind; Output::ALL.len()] = {
 
 impl Output {
     /// The unit class the output's promised error is measured in.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) const fn scale_kind(self) -> ScaleKind {
         KINDS[self as usize]
     }

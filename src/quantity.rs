@@ -395,7 +395,7 @@ pub enum Value {
 
 impl Value {
     /// The number, or `NaN` for a name.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn number(self) -> f64 {
         match self {
             Value::Number(x) => x,

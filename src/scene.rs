@@ -126,7 +126,7 @@ impl Placed {
 
     /// The scene of the body moving at `velocity`: [`BarrierScene::new`]'s
     /// checks of the velocity.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn moving(&self, velocity: PlanarVelocity) -> Result<BarrierScene> {
         let scene = self.moving_unchecked(velocity);
         scene.check_velocity()?;
@@ -135,7 +135,7 @@ impl Placed {
 
     /// The scene of the body moving at `velocity`, its velocity not yet
     /// checked ([`BarrierScene::check_velocity`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn moving_unchecked(&self, velocity: PlanarVelocity) -> BarrierScene {
         let Placed { body, contact, k2 } = *self;
         BarrierScene {
@@ -169,7 +169,7 @@ impl BarrierScene {
 
     /// Checks that the velocities are finite and that the contact
     /// approaches, and that its contact velocities are in the f64 range.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn check_velocity(&self) -> Result<()> {
         let (velocity, contact_velocity) = (self.velocity, self.contact_velocity);
         finite(Input::NormalVelocity, velocity.normal)?;

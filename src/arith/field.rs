@@ -22,12 +22,12 @@ pub(crate) trait Field: Clone {
     fn of(x: f64) -> Self;
     /// An input whose value at lane `i` is `x(i)`, exactly ([`Field::of`]
     /// of `x(0)` in a field of one point).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of_lanes(x: impl Fn(usize) -> f64) -> Self {
         Self::of(x(0))
     }
     /// [`Field::quotient_of`] of `(num, den, rounded) = q(i)` at lane `i`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of_lanes(q: impl Fn(usize) -> (f64, f64, f64)) -> Self {
         let (num, den, rounded) = q(0);
         Self::quotient_of(num, den, rounded)
@@ -38,7 +38,7 @@ pub(crate) trait Field: Clone {
     /// `self · b + c`: one rounding in `f64` (a fused multiply-add), the exact
     /// value in the exact fields. The model uses it where a fused form keeps
     /// the f64 evaluation's sign or accuracy.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul_add(&self, b: &Self, c: &Self) -> Self {
         self.mul(b).add(c)
     }
@@ -47,7 +47,7 @@ pub(crate) trait Field: Clone {
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient
     /// already formed: `f64` takes it as it is (no second division), the exact
     /// fields form the exact one.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
         let _ = rounded;
         Self::of(num).div(&Self::of(den))
@@ -60,20 +60,20 @@ pub(crate) trait Field: Clone {
     /// An output of unit class `kind`: [`Field::round`], except in `fast`
     /// arithmetic, which answers its own value when its error bound is
     /// within the promise ([`crate::accuracy`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output(&self, kind: ScaleKind) -> Result<f64, Self::Undecided> {
         let _ = kind;
         self.round()
     }
     /// An output `x √y` of unit class `kind`, as [`Field::round_output`].
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Self::Undecided> {
         let _ = kind;
         self.round_times_sqrt(y)
     }
     /// Every lane's output of unit class `kind`, lane `i`'s in `out[i]`
     /// (`out[0]` is [`Field::round_output`] in a field of one point).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Self::Undecided> {
         out[0] = self.round_output(kind)?;
         Ok(())
@@ -81,7 +81,7 @@ pub(crate) trait Field: Clone {
     /// Every lane's output `x √y` of unit class `kind`, as
     /// [`Field::lanes_output`] (`out[0]` is
     /// [`Field::round_output_times_sqrt`] in a field of one point).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(
         &self,
         y: &Self,
@@ -189,7 +189,7 @@ macro_rules! forward_ring {
 
 impl Field for Compensated {
     type Undecided = Unsettled;
-    forward_ring!(#[inline(always)]);
+    forward_ring!(#[cfg_attr(not(debug_assertions), inline(always))]);
     #[inline]
     fn div(&self, o: &Self) -> Self {
         Self::div(self, o)
@@ -209,21 +209,21 @@ impl Field for Compensated {
 
 impl<const RUNNING: bool, const STATIC: bool> Field for Filtered<RUNNING, STATIC> {
     type Undecided = Uncertain;
-    forward_ring!(#[inline(always)]);
-    #[inline(always)]
+    forward_ring!(#[cfg_attr(not(debug_assertions), inline(always))]);
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul_add(&self, b: &Self, c: &Self) -> Self {
         Self::mul_add(self, b, c)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn div(&self, o: &Self) -> Self {
         Self::div(self, o)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
         debug_assert_eq!(rounded.to_bits(), (num / den).to_bits());
         Self::quotient_of(num, rounded)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sign(&self) -> Result<Ordering, Uncertain> {
         Self::sign(self)
     }
@@ -231,21 +231,21 @@ impl<const RUNNING: bool, const STATIC: bool> Field for Filtered<RUNNING, STATIC
     /// zero written `+0.0`, when its error bound is within the promise of a
     /// dimensionless number relative to itself (the model's outputs go
     /// through [`Field::round_output`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round(&self) -> Result<f64, Uncertain> {
         self.output(ScaleKind::Dimensionless)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_times_sqrt(&self, y: &Self) -> Result<f64, Uncertain> {
         self.output_times_sqrt(y, ScaleKind::Dimensionless)
     }
     /// The f64 value itself when its error bound is within the promise
     /// ([`Filtered::output`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output(&self, kind: ScaleKind) -> Result<f64, Uncertain> {
         self.output(kind)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Uncertain> {
         self.output_times_sqrt(y, kind)
     }
@@ -262,40 +262,40 @@ pub(crate) struct OutOfRange;
 
 impl Field for f64 {
     type Undecided = OutOfRange;
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of(x: f64) -> Self {
         x
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(&self, o: &Self) -> Self {
         self + o
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(&self, o: &Self) -> Self {
         self - o
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(&self, o: &Self) -> Self {
         self * o
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul_add(&self, b: &Self, c: &Self) -> Self {
         f64::mul_add(*self, *b, *c)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn div(&self, o: &Self) -> Self {
         self / o
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
         debug_assert_eq!(rounded.to_bits(), (num / den).to_bits());
         rounded
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn neg(&self) -> Self {
         -self
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sign(&self) -> Result<Ordering, OutOfRange> {
         if self.is_finite() {
             Ok(if *self > 0.0 {
@@ -310,13 +310,13 @@ impl Field for f64 {
         }
     }
     /// The value itself, with a zero written `+0.0`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round(&self) -> Result<f64, OutOfRange> {
         // Tested on the returned value, as `Filtered`'s.
         let v = self + 0.0;
         if v.is_finite() { Ok(v) } else { Err(OutOfRange) }
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_times_sqrt(&self, y: &Self) -> Result<f64, OutOfRange> {
         Field::round(&(self * y.sqrt()))
     }

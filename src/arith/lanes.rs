@@ -51,7 +51,7 @@ thread_local! {
 /// Sets the scales each lane's outputs are measured against in the next
 /// evaluation in lanes on this thread: lane `i`'s are `scales[i]` (at most
 /// [`MAX_LANES`]), its point's own, as a single solve measures them.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn measure_lanes_against(scales: &[ErrorScales]) {
     let mut by_kind = [[0.0; MAX_LANES]; 6];
     for (lane, s) in scales.iter().enumerate() {
@@ -68,7 +68,7 @@ pub(crate) fn measure_lanes_against(scales: &[ErrorScales]) {
 
 impl<const L: usize, const RUNNING: bool, const STATIC: bool> Lanes<L, RUNNING, STATIC> {
     /// Lane `i` as a value of its own.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn lane(&self, i: usize) -> Filtered<RUNNING, STATIC> {
         Filtered::of_parts(self.h[i], self.m[i], self.lambda, self.e[i])
     }
@@ -102,52 +102,52 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
 
     const LANES: usize = L;
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of(x: f64) -> Self {
         lanewise!(|_i| Filtered::<RUNNING, STATIC>::exact(x))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of_lanes(x: impl Fn(usize) -> f64) -> Self {
         lanewise!(|i| Filtered::<RUNNING, STATIC>::exact(x(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of_lanes(q: impl Fn(usize) -> (f64, f64, f64)) -> Self {
         lanewise!(|i| {
             let (num, den, rounded) = q(i);
             <Filtered<RUNNING, STATIC> as super::Field>::quotient_of(num, den, rounded)
         })
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(&self, o: &Self) -> Self {
         lanewise!(|i| self.lane(i).add(&o.lane(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(&self, o: &Self) -> Self {
         lanewise!(|i| self.lane(i).sub(&o.lane(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(&self, o: &Self) -> Self {
         lanewise!(|i| self.lane(i).mul(&o.lane(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul_add(&self, b: &Self, c: &Self) -> Self {
         lanewise!(|i| self.lane(i).mul_add(&b.lane(i), &c.lane(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn div(&self, o: &Self) -> Self {
         lanewise!(|i| self.lane(i).div(&o.lane(i)))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn quotient_of(num: f64, den: f64, rounded: f64) -> Self {
         lanewise!(|_i| <Filtered<RUNNING, STATIC> as super::Field>::quotient_of(num, den, rounded))
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn neg(&self) -> Self {
         lanewise!(|i| self.lane(i).neg())
     }
     /// The sign every lane decides, or [`Diverged`]: the lanes' common path
     /// ([`Filtered::clear_sign`]) tested together, the rest lane by lane.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sign(&self) -> Result<Ordering, Diverged> {
         let (mut clear, mut positive, mut negative) = (true, true, true);
         for i in 0..L {
@@ -174,25 +174,25 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     }
     /// Lanes have no one value: outputs are read lane by lane
     /// ([`Field::lanes_output`](super::Field::lanes_output)).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round(&self) -> Result<f64, Diverged> {
         Err(Diverged)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output(&self, _: ScaleKind) -> Result<f64, Diverged> {
         Err(Diverged)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_times_sqrt(&self, _: &Self) -> Result<f64, Diverged> {
         Err(Diverged)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn round_output_times_sqrt(&self, _: &Self, _: ScaleKind) -> Result<f64, Diverged> {
         Err(Diverged)
     }
     /// Every lane's output, each tested against its lane's scale as its
     /// single solve tests it ([`Filtered::output_test`]), together.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
         const { assert!(L <= MAX_LANES, "more lanes than scales") };
         let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
@@ -206,7 +206,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     }
     /// Every lane's output `x √y`, each as its single solve tests it
     /// ([`Filtered::output_times_sqrt_against`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
         const { assert!(L <= MAX_LANES, "more lanes than scales") };
         let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
@@ -227,7 +227,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
 /// Every lane's root, or [`Diverged`] where one lane's radicand is too
 /// uncertain ([`Filtered::sqrt`]).
 impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Radical for Lanes<L, RUNNING, STATIC> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sqrt(&self) -> Result<Self, Diverged> {
         let mut rooted = true;
         let root = lanewise!(|i| match self.lane(i).sqrt() {

@@ -254,21 +254,21 @@ pub(crate) trait Radical: Field + 'static {
 }
 
 impl Radical for f64 {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sqrt(&self) -> Result<f64, super::OutOfRange> {
         Ok(f64::sqrt(*self))
     }
 }
 
 impl<const RUNNING: bool, const STATIC: bool> Radical for super::Filtered<RUNNING, STATIC> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sqrt(&self) -> Result<Self, super::Uncertain> {
         super::Filtered::sqrt(self)
     }
 }
 
 impl Radical for super::Compensated {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sqrt(&self) -> Result<Self, super::Unsettled> {
         super::Compensated::sqrt(self)
     }

@@ -83,7 +83,7 @@ impl BarrierImpact {
     }
 
     /// [`BarrierImpact::scene`], the body validated once where it is fixed.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn scene_with(&self, fixed: &Fixed) -> Result<BarrierScene> {
         match fixed.body.as_deref() {
             Some(Ok(body)) => body.placed.moving(self.velocity),
@@ -93,7 +93,7 @@ impl BarrierImpact {
     }
 
     /// [`Case::error_scales`], the lever arm formed once where it is fixed.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn error_scales_with(&self, fixed: &Fixed) -> ErrorScales {
         match fixed.body.as_deref() {
             Some(Ok(body)) => rigid_scales(body.placed.body().mass(), body.arm, &self.velocity),
@@ -158,14 +158,14 @@ struct FixedBody {
 }
 
 /// The lever arm `√(d_c² + d_d²)` from the centre of mass to the contact.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn lever_arm(contact: &Contact) -> f64 {
     let (c, d) = (contact.tangential_offset, contact.normal_offset);
     c.mul_add(c, d * d).sqrt()
 }
 
 /// A rigid body's scales: its mass, velocity and spin, and its lever arm.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn rigid_scales(mass: f64, arm: f64, v: &PlanarVelocity) -> ErrorScales {
     ScalesOf::new()
         .body(mass, &[v.normal, v.tangential], &[v.angular], arm)
@@ -180,7 +180,7 @@ struct Rigid<'a> {
 }
 
 impl Model<BarrierOutcome> for Rigid<'_> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn run<N: Radical>(&self, out: &mut BarrierOutcome) -> Exact<N, ()> {
         model::rigid::<N>(self.scene, &self.law, self.outputs, out)
     }
@@ -192,7 +192,7 @@ struct Point {
 }
 
 impl Model<BarrierOutcome> for Point {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn run<N: Radical>(&self, out: &mut BarrierOutcome) -> Exact<N, ()> {
         model::point_mass::<N>(&self.mass, self.outputs, out)
     }
@@ -294,13 +294,13 @@ impl Case for BarrierImpact {
     }
 
     /// A rigid body under a law no axis changes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_lanes(fixed: &Fixed) -> bool {
         matches!(fixed.law, Some(Ok(_)))
     }
 
     /// A rigid body's points under a law no axis changes, in lanes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_lanes(
         impacts: &[Self; LANES],
         fixed: &Fixed,
@@ -352,13 +352,13 @@ impl Case for BarrierImpact {
         // the model in lanes inlined, it spilled its own values across the
         // model's frame and took half as long again per point).
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || model::rigid_lanes::<Lanes<LANES>, LANES>(&scenes, law, outputs, out),
         )
         .is_ok()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate(
         &self,
         fixed: &Self::Fixed,

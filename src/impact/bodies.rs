@@ -147,7 +147,7 @@ impl BodiesImpact {
     }
 
     /// Whether the bodies and the contact are in this case's fast range.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_this_range(&self) -> bool {
         all_in_range(&self.a.values())
             && self.b.is_none_or(|b| all_in_range(&b.values()))
@@ -188,7 +188,7 @@ struct Pair<'a> {
 }
 
 impl Model<BodiesOutcome> for Pair<'_> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn run<N: Radical>(&self, out: &mut BodiesOutcome) -> Exact<N, ()> {
         let prepared = self.prepared.and_then(Prepared::get::<Geometry<N>>);
         bodies::<N>(self.impact, prepared, self.outputs, out)
@@ -278,7 +278,7 @@ impl Case for BodiesImpact {
     }
 
     /// A geometry and a law no axis changes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_lanes(fixed: &Fixed) -> bool {
         fixed.lanes.is_some() && matches!(fixed.law, Some(Ok(_)))
     }
@@ -287,7 +287,7 @@ impl Case for BodiesImpact {
     /// validated as its single solve validates it, its approach decided in
     /// f64 and every input in this case's fast range (else the points are
     /// solved one by one).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_lanes(
         impacts: &[Self; LANES],
         fixed: &Fixed,
@@ -308,13 +308,13 @@ impl Case for BodiesImpact {
         // A compiled body of its own, as the one lamina's lanes
         // (`impact::barrier`).
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || bodies_lanes::<Lanes<LANES>, LANES>(impacts, law, geometry, outputs, out),
         )
         .is_ok()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate(
         &self,
         fixed: &Fixed,

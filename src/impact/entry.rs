@@ -21,7 +21,7 @@ pub fn solve<C: Case>(impact: &C, outputs: Outputs, precision: Precision) -> Res
 pub fn solve_many<C: Case>(impacts: &[C], outputs: Outputs, precision: Precision) -> Vec<Result<C::Outcome>> {
     let arithmetic = Arithmetic::from(precision);
     crate::kernels::run(
-        #[inline(always)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         || {
             impacts
                 .iter()
@@ -40,13 +40,13 @@ pub fn solve_in<C: Case>(
     arithmetic: Arithmetic,
 ) -> (Result<C::Outcome>, Stage) {
     crate::kernels::run(
-        #[inline(always)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         || solve_here(impact, outputs, arithmetic),
     )
 }
 
 /// One impact solved in the copy of the solver that calls it.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn solve_here<C: Case>(impact: &C, outputs: Outputs, arithmetic: Arithmetic) -> (Result<C::Outcome>, Stage) {
     let fixed = impact.fix(&[]);
     let in_range = arithmetic.checks_range() && impact.all_in_fast_range();
@@ -103,7 +103,7 @@ impl<C: Case> Solver<C> {
     /// Whether [`Solver::solve_block_into`] evaluates points together: in
     /// `fast`, with every input not swept in the fast range, where the case
     /// can ([`Case::in_lanes`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn in_lanes(&self) -> bool {
         self.arithmetic == Arithmetic::Fast && self.fixed_in_range && C::in_lanes(&self.fixed)
     }
@@ -114,7 +114,7 @@ impl<C: Case> Solver<C> {
     /// points go through the model four at a time where the case can
     /// ([`Case::evaluate_lanes`]), and one by one where it cannot (a
     /// refusal, a decision the lanes do not all take alike).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn solve_block_into(
         &self,
         impacts: &[C],
@@ -152,7 +152,7 @@ impl<C: Case> Solver<C> {
     }
 
     /// Solves `impact` into `out` (left as it was on a refusal).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn solve_into(&self, impact: &C, out: &mut C::Outcome) -> Result<()> {
         let in_range =
             self.arithmetic.checks_range() && self.fixed_in_range && all_in_fast_range(impact, &self.swept);

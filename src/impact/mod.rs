@@ -234,7 +234,7 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     /// Whether [`Case::evaluate_lanes`] may answer points of a sweep whose
     /// [`Case::fix`] result is `fixed` (a case without an evaluation in
     /// lanes: never).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_lanes(fixed: &Self::Fixed) -> bool {
         let _ = fixed;
         false
@@ -246,7 +246,7 @@ pub trait Case: Copy + fmt::Debug + Send + Sync + 'static {
     /// (outcomes partly written). Called in `fast` alone, with every input in
     /// the fast range; a case that has no evaluation in lanes answers
     /// `false`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_lanes(
         impacts: &[Self; LANES],
         fixed: &Self::Fixed,
@@ -303,7 +303,7 @@ fn all_in_fast_range<C: Case>(impact: &C, inputs: &[Input]) -> bool {
 /// field. `Fast` answers in f64 when `in_range` and the f64 evaluation stays
 /// in range (its outputs within the promised error of `scales`, the
 /// impact's [`Case::error_scales`]), else as `Exact`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn evaluate<T>(
     arithmetic: Arithmetic,
     in_range: bool,
@@ -326,7 +326,7 @@ pub(crate) fn evaluate<T>(
 /// `certain` telling whether that decision was certain: where it was not,
 /// the f64 evaluation may not answer (`Fast` goes to the exact stages, the
 /// measurement modes `Plain` and `Unfiltered` become `Exact`).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn evaluate_contact<T>(
     arithmetic: Arithmetic,
     in_range: bool,
@@ -376,10 +376,10 @@ fn rational<T>(model: &impl Model<T>, out: &mut T) -> (Result<()>, Stage) {
 
 /// One stage of the exact evaluation, in the kernels the CPU supports, in a
 /// function of its own.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
     crate::kernels::run(
-        #[inline(always)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         || model.run::<N>(out),
     )
 }
@@ -388,7 +388,7 @@ fn stage<N: Radical, T>(model: &impl Model<T>, out: &mut T) -> Exact<N, ()> {
 /// is within its error bound of a tie (or the evaluation leaves the f64
 /// range: an output that overflows, a decision on an infinity or a NaN) or
 /// refuses the impact. Every decision of a `fast` answer is the exact one.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn fast_or_exact<T>(
     model: &impl Model<T>,
     scales: ErrorScales,
@@ -447,7 +447,7 @@ pub(crate) struct Prepared<F, C> {
 impl<F: std::any::Any, C: std::any::Any> Prepared<F, C> {
     /// The geometry of type `G` (a geometry in the field the model runs
     /// in), if it is one of the two.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn get<G: std::any::Any>(&self) -> Option<&G> {
         let fast: &dyn std::any::Any = &self.fast;
         let compensated: &dyn std::any::Any = &self.compensated;
@@ -470,14 +470,14 @@ fn run_fast<const RUNNING: bool, const STATIC: bool, T>(
     out: &mut T,
 ) -> Exact<Filtered<RUNNING, STATIC>, ()> {
     crate::kernels::run(
-        #[inline(always)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         || model.run::<Filtered<RUNNING, STATIC>>(out),
     )
 }
 
 /// The f64 answer with the decisions f64 takes (no error bound), or the exact
 /// one where the evaluation leaves the f64 range or refuses.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn unfiltered_or_exact<T>(model: &impl Model<T>, bounds: StaticBounds, out: &mut T) -> (Result<()>, Stage) {
     match stage::<f64, T>(model, out) {
         Ok(()) => (Ok(()), Stage::Fast),
@@ -548,7 +548,7 @@ pub fn settled_by_stage() -> [(Stage, u64); 3] {
     ]
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn adaptive_stages<T>(model: &impl Model<T>, bounds: StaticBounds, out: &mut T) -> (Result<()>, Stage) {
     let settled = |result: Exact<Bounded, ()>| match result {
         Ok(()) => Some(Ok(())),

@@ -50,7 +50,7 @@ struct TorsionModel {
 }
 
 impl Model<TorsionalOutcome> for TorsionModel {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn run<N: Radical>(&self, out: &mut TorsionalOutcome) -> Exact<N, ()> {
         torsional::<N>(&self.torsion, self.energy, out)
     }
@@ -89,14 +89,14 @@ impl Case for TorsionalImpact {
     fn fix(&self, _swept: &[Input]) {}
 
     /// Every input is the point's own: any sweep runs in lanes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_lanes(_fixed: &()) -> bool {
         true
     }
 
     /// The points in lanes, each validated as its single solve validates it
     /// (else the points are solved one by one).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_lanes(
         impacts: &[Self; LANES],
         _fixed: &(),
@@ -116,13 +116,13 @@ impl Case for TorsionalImpact {
         // A compiled body of its own, as the laminae's lanes
         // (`impact::barrier`).
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || torsional_lanes::<Lanes<LANES>, LANES>(&torsions, outputs.energy, out),
         )
         .is_ok()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate(
         &self,
         _fixed: &(),

@@ -51,7 +51,7 @@ struct Scene<'a, N, const L: usize> {
 
 impl<'a, N: Field, const L: usize> Scene<'a, N, L> {
     /// The scene in the field.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn new(fast: &'a [BarrierScene; L]) -> Exact<N, Self> {
         let m = N::of_lanes(|i| fast[i].body.mass());
         let inertia = N::of_lanes(|i| fast[i].body.inertia());
@@ -98,7 +98,7 @@ impl<'a, N: Field, const L: usize> Scene<'a, N, L> {
     /// so every value of the scene was stored and loaded again and no `λ` of
     /// `Filtered` was folded. A law and the energy that both read it each
     /// form it (the exact fields divide twice then).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn inv_total(&self) -> N {
         N::of(1.0).div(&self.total)
     }
@@ -107,7 +107,7 @@ impl<'a, N: Field, const L: usize> Scene<'a, N, L> {
 /// Whether the input `x` of every lane (`x(scene)`, `value` in the field)
 /// is exactly zero: lanes of which some are zero and some not are decided
 /// as a sign, which stops them (a field of one point never gets there).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn zero_in_every_lane<N: Field, const L: usize>(
     scenes: &[BarrierScene; L],
     value: &N,
@@ -126,13 +126,13 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     type Turn = N;
     type Outcome = [BarrierOutcome; L];
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn reduced(&self) -> &Reduced<N> {
         &self.reduced
     }
 
     /// `(D(μ) k², d_c − μ d_d)` with `D(μ) k² = k² + d_c (d_c − μ d_d)` (after Eq 7).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_coefficient(&self, mu: f64) -> (N, N) {
         let lever = N::of(-mu).mul_add(&self.dd, &self.dc);
         (self.dc.mul_add(&lever, &self.k2), lever)
@@ -146,7 +146,7 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
 
     /// `Δn = k² q_n / (D k²)`; for central contact `D k² = k²`, so `Δn = q_n`
     /// exactly (a tie stays decidable).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_normal(&self, qn: &N, per: &N) -> N {
         if self.central {
             qn.clone()
@@ -156,18 +156,18 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     }
 
     /// `ΔΩ = (d_c − μ d_d) q_n / (D k²)`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_turn(&self, lever: &N, per: &N) -> N {
         lever.mul(per)
     }
 
     /// `1 / S`, `S = k² + d_c² + d_d²` (`det W̃ = k² S` in units of `m k²`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn inv_det(&self) -> N {
         self.inv_total()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn target_normal(&self, qn: &N, sdn: &N, inv_det: &N) -> N {
         if self.central {
             qn.clone()
@@ -177,12 +177,12 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     }
 
     /// `ΔΩ = (d_c q_n + d_d q_t) / S`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn target_turn(&self, qn: &N, qt: &N, inv_det: &N) -> N {
         self.dc.mul_add(qn, &self.dd.mul(qt)).mul(inv_det)
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add_turns(a: &N, b: &N) -> N {
         a.add(b)
     }
@@ -200,7 +200,7 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     /// `T_L = −½ m [Δn (v_cn + V_cn) + Δt (v_ct + V_ct)]` is the work of the
     /// impulses (Kelvin and Tait, as in the Appendix), which never subtracts
     /// two nearly equal energies.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn assemble(&self, x: &Assembly<'_, N, N>, outcomes: &mut [BarrierOutcome; L]) -> Exact<N, ()> {
         let a = x.answer;
         let e = x.e;
@@ -312,7 +312,7 @@ struct Energies<N> {
 
 impl<N: Field> Energies<N> {
     /// Each of `L` lanes' energies, each rounded once.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn outputs<const L: usize>(&self) -> Exact<N, [PlanarEnergy; L]> {
         let initial = outs::<N, L>(Output::InitialEnergy, &self.initial)?;
         let r#final = outs::<N, L>(Output::FinalEnergy, &self.initial.sub(&self.loss))?;
@@ -346,7 +346,7 @@ impl<N: Field, const L: usize> Scene<'_, N, L> {
     /// rest, `P = −W⁻¹ v_c`); `T_L(P)` is a concave quadratic with its maximum
     /// there, hence `T_L* = T_L / T_M ≤ 1`. Losses are formed per unit mass and
     /// multiplied by `m` last, so `T_L*` never divides two underflowed energies.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn energy(&self, work: &N) -> Energies<N> {
         let half_m = half::<N>().mul(&self.m);
         let half_i = half::<N>().mul(&self.inertia);
@@ -377,7 +377,7 @@ impl<N: Field, const L: usize> Scene<'_, N, L> {
 
 /// A planar impact of a rigid body in the field `N`, in a validated scene
 /// under a validated law.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn rigid<N: Field>(
     scene: &BarrierScene,
     law: &Law,
@@ -396,7 +396,7 @@ pub(crate) fn rigid<N: Field>(
 /// ([`crate::arith::Lanes`]), each in a validated scene: every outcome
 /// written, or an error (in lanes, that the points are to be solved one by
 /// one).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn rigid_lanes<N: Field, const L: usize>(
     scenes: &[BarrierScene; L],
     law: &Law,
@@ -419,7 +419,7 @@ pub(crate) struct PointMass {
 /// A point mass (section 2.1): `V_n = −e v_n`, `P_n = m (1 + e)(−v_n)`, `V_t = v_t`;
 /// `μ_c = v_t / ((1 + e) v_n)`, the limit of Eq 14 for `k → ∞`; `T_M` is the
 /// whole initial energy (the mass stops), `T_L = ½ m (1 − e)(1 + e) v_n²`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn point_mass<N: Field>(
     p: &PointMass,
     outputs: Outputs,

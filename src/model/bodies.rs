@@ -49,7 +49,7 @@ struct Body<N> {
 impl<N: Field> Body<N> {
     /// Lamina `l`'s body terms for contact point `c` and normal `n` (a
     /// function, not a closure: inlined into the compiled copy that runs).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> Self {
         let r = contact_arm(l, c);
         let m = N::of(l.mass);
@@ -80,7 +80,7 @@ impl<N: Field> Motion<N> {
     /// The velocities of lamina `l(i)` in lane `i`, with its contact-point
     /// velocity's normal and tangential parts (arm `r`, normal `n`, tangent
     /// `t`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of<'l>(l: impl Fn(usize) -> &'l Lamina, r: &[N; 2], n: &[N; 2], t: &[N; 2]) -> (Self, N, N) {
         let motion = Motion {
             v: [
@@ -114,7 +114,7 @@ pub(crate) struct Geometry<N> {
 }
 
 impl<N: Field> Geometry<N> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn new(fast: &BodiesImpact) -> Self {
         let n = [N::of(fast.contact.normal[0]), N::of(fast.contact.normal[1])];
         let c = [N::of(fast.contact.point[0]), N::of(fast.contact.point[1])];
@@ -165,7 +165,7 @@ impl<N: Field> Geometry<N> {
 /// The relative normal contact velocity `ũ_n = (u_A − u_B) · n`, with
 /// `u_b = v_b + ω_b ẑ × r_b`: the same operations in every field, so the f64
 /// value the fast evaluation decides on is the one validation checked.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
     let n = [N::of(impact.contact.normal[0]), N::of(impact.contact.normal[1])];
     let c = [N::of(impact.contact.point[0]), N::of(impact.contact.point[1])];
@@ -177,7 +177,7 @@ pub(crate) fn approach<N: Field>(impact: &BodiesImpact) -> N {
 }
 
 /// `u_b · n` of one body.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
     let v = [N::of(l.velocity[0]), N::of(l.velocity[1])];
     let w = N::of(l.angular_velocity);
@@ -185,14 +185,14 @@ fn body_normal_velocity<N: Field>(l: &Lamina, c: &[N; 2], n: &[N; 2]) -> N {
 }
 
 /// `r = C − G` of one body.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn contact_arm<N: Field>(l: &Lamina, c: &[N; 2]) -> [N; 2] {
     [c[0].sub(&N::of(l.position[0])), c[1].sub(&N::of(l.position[1]))]
 }
 
 /// The contact-point velocity `u = (v_x − ω r_y, v_y + ω r_x)` of a body
 /// moving at `v`, `ω` with arm `r`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn contact_point_velocity<N: Field>(v: &[N; 2], w: &N, r: &[N; 2]) -> [N; 2] {
     let ux = w.neg().mul_add(&r[1], &v[0]);
     let uy = w.mul_add(&r[0], &v[1]);
@@ -200,7 +200,7 @@ fn contact_point_velocity<N: Field>(v: &[N; 2], w: &N, r: &[N; 2]) -> [N; 2] {
 }
 
 /// `u · d`, fused as the approach decision forms it.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn along<N: Field>(u: &[N; 2], d: &[N; 2]) -> N {
     u[0].mul_add(&d[0], &u[1].mul(&d[1]))
 }
@@ -220,7 +220,7 @@ struct Scene<'g, N, const L: usize> {
 impl<'g, N: Field, const L: usize> Scene<'g, N, L> {
     /// The scene of the impacts `fast`, each with body B where the geometry
     /// has it (the caller's to check).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn new(g: &'g Geometry<N>, fast: &[BodiesImpact; L]) -> Self {
         let (n, t) = (&g.n, &g.t);
         // ũ_n by the operations of `approach`, which validation decided on.
@@ -250,7 +250,7 @@ impl<'g, N: Field, const L: usize> Scene<'g, N, L> {
     }
 
     /// `ũ_n / |n|` and friends: `x / |n|` correctly rounded, lane by lane.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn along(&self, output: Output, x: &N) -> Exact<N, [f64; L]> {
         outs_times_sqrt::<N, L>(output, &x.div(&self.g.nn), &self.g.nn)
     }
@@ -258,7 +258,7 @@ impl<'g, N: Field, const L: usize> Scene<'g, N, L> {
     /// The energies of the pair: `T = Σ ½ m v² + ½ I ω²`, the loss `−½ q·(ũ + Ũ)`
     /// (the work of the impulse), and `T_M = ½ ũᵀ W̃⁻¹ ũ` formed from
     /// `adj W̃ = α 1 + Σ ρ⊥ρ⊥ᵀ/I_b` as `½ [α |ũ|² + Σ (ρ_t ũ_n − ρ_n ũ_t)²/I_b] / det`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn energy(&self, work: &N) -> Exact<N, [PlanarEnergy; L]> {
         let h = half::<N>();
         let mut initial = N::of(0.0);
@@ -296,11 +296,11 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
     type Turn = ();
     type Outcome = [BodiesOutcome; L];
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn reduced(&self) -> &Reduced<N> {
         &self.reduced
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_coefficient(&self, mu: f64) -> (N, ()) {
         (N::of(mu).mul_add(&self.reduced.wnt, &self.reduced.wnn), ())
     }
@@ -312,21 +312,21 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
             d: self.ratio_coefficient(mu).0.div(&self.g.alpha).approx(),
         }
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_normal(&self, _qn: &N, per: &N) -> N {
         per.clone()
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ratio_turn(&self, _lever: &(), _per: &N) {}
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn inv_det(&self) -> N {
         self.g.inv_det.clone()
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn target_normal(&self, _qn: &N, sdn: &N, inv_det: &N) -> N {
         sdn.mul(inv_det)
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn target_turn(&self, _qn: &N, _qt: &N, _inv_det: &N) {}
     fn creates_energy(&self, e: &N, mu: &N, work: &N, law: Input) -> ImpactError {
         ImpactError::CreatesEnergy {
@@ -345,10 +345,10 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
             ),
         }
     }
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add_turns(_a: &(), _b: &()) {}
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn assemble(&self, x: &Assembly<'_, N, ()>, outcomes: &mut [BodiesOutcome; L]) -> Exact<N, ()> {
         let a = x.answer;
         let (qn, qt) = (&a.dn, &a.dt);
@@ -452,7 +452,7 @@ impl<N: Field, const L: usize> ContactSpace<N> for Scene<'_, N, L> {
 /// refused unless the contact approaches (`ũ_n < 0`, decided exactly in the
 /// exact fields; the fast evaluation is only asked where validation found the
 /// f64 sign certain).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn bodies<N: Field>(
     impact: &BodiesImpact,
     prepared: Option<&Geometry<N>>,
@@ -481,7 +481,7 @@ pub(crate) fn bodies<N: Field>(
 /// (each point with body B where the geometry has it): every outcome
 /// written, or an error (in lanes, that the points are to be solved one by
 /// one). Refused unless the contacts approach.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn bodies_lanes<N: Field, const L: usize>(
     impacts: &[BodiesImpact; L],
     law: &Law,

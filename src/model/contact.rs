@@ -124,7 +124,7 @@ pub(crate) struct Assembly<'a, N, T> {
 /// plane and space ([`Reading`]): a single ratio `c` (frictionless, a
 /// prescribed `μ`), a kept target `U_t = −e_t u_t` capped by `f` with sliding
 /// beyond it, or two phases.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
     sc: &S,
     law: &Law,
@@ -156,14 +156,14 @@ pub(crate) fn under_law<N: Field, S: ContactSpace<N>>(
 }
 
 /// `q_n = (1 + e) s`: the change of `u_n` that restitution `e` asks (Eq 1).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn normal_target<N: Field, S: ContactSpace<N>>(sc: &S, e: &N) -> N {
     let cs = sc.reduced();
     N::of(1.0).add(e).mul(&cs.s)
 }
 
 /// `A + μ B` with its turn, refused (naming `law`) unless positive.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn positive_coefficient<N: Field, S: ContactSpace<N>>(sc: &S, mu: f64, law: Input) -> Exact<N, (S::Turn, N)> {
     let (d, lever) = sc.ratio_coefficient(mu);
     if sign(&d)? == Ordering::Greater {
@@ -175,7 +175,7 @@ fn positive_coefficient<N: Field, S: ContactSpace<N>>(sc: &S, mu: f64, law: Inpu
 
 /// `(Δn, Δt, turn, ΔU_t)` for ratio `μ` changing `u_n` by `q_n` (Eqs 5–7):
 /// `q_n = (A + μ B) Δ_n`, `ΔU_t = (B + μ C) q_n / (A + μ B)`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn ratio_parts<N: Field, S: ContactSpace<N>>(
     sc: &S,
     qn: &N,
@@ -195,7 +195,7 @@ fn ratio_parts<N: Field, S: ContactSpace<N>>(
 
 /// The answer for a prescribed ratio `μ` with restitution `e` (`q_n` its
 /// [`normal_target`]).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn ratio_answer<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
@@ -221,7 +221,7 @@ fn ratio_answer<N: Field, S: ContactSpace<N>>(
 
 /// `det·Δn = C q_n + B q_t` and `det·Δt = −B q_n − A q_t`: the impulse
 /// (`adj W̃ Δu`) that changes `u_n` by `q_n` and `u_t` by `−q_t`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn scaled_impulses<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, qt: &N) -> (N, N) {
     let cs = sc.reduced();
     (
@@ -234,7 +234,7 @@ fn scaled_impulses<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, qt: &N) -> (N, 
 /// `q_t = (1 + e_t) u_t`, scaled: `det·Δn` and `det·Δt`, whose signs and
 /// ratio decide the bilinear law without a quotient, and its ratio `μ`
 /// (absent when `Δn = 0`).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn target_impulse<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, et: f64) -> Exact<N, TargetImpulse<N>> {
     let qt = N::of(1.0).add(&N::of(et)).mul(&sc.reduced().ut);
     let (sdn, sdt) = scaled_impulses(sc, qn, &qt);
@@ -244,7 +244,7 @@ fn target_impulse<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N, et: f64) -> Exac
 
 /// The target answer of [`target_impulse`], formed only where the law
 /// keeps it; for one body with `d_c = 0` these are Eqs 21–23 and 25.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn target_answer<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
@@ -270,7 +270,7 @@ fn target_answer<N: Field, S: ContactSpace<N>>(
 /// `μ_c`: the ratio `Δt / Δn` of the answer that ends with `U_t = 0`
 /// (`q_t = u_t`) and changes `u_n` by `q_n` (Eq 14 for one body with
 /// `d_c = 0`), `None` if its `Δn = 0`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Option<N>> {
     let cs = sc.reduced();
     let (sdn, sdt) = scaled_impulses(sc, qn, &cs.ut);
@@ -281,7 +281,7 @@ fn critical_ratio<N: Field, S: ContactSpace<N>>(sc: &S, qn: &N) -> Exact<N, Opti
 /// target answer `U_t = −e_t u_t` when its ratio satisfies `|μ| ≤ f` (`f`
 /// the law's cap; the law's first regime), else sliding through separation
 /// with `|μ| = f` opposing the initial slip.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn bilinear<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
@@ -350,7 +350,7 @@ fn bilinear<N: Field, S: ContactSpace<N>>(
 /// else `|μ| = f_A` opposing the slip; the rebound's ratio `μ_R` is then a
 /// magnitude along the approach's tangential impulse, as in space. The
 /// reported ratio is the overall `μ = P_t / P_n`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn kinetic<N: Field, S: ContactSpace<N>>(
     sc: &S,
     phases: &Phases,
@@ -429,7 +429,7 @@ enum ApproachNormal<N> {
 /// the rebound's signed ratio (`μ_R` along the approach's tangential
 /// impulse) and the regime (sticking or sliding).
 #[allow(clippy::type_complexity)] // the parts of one phase, named where they are read
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn coulomb_approach<N: Field, S: ContactSpace<N>>(
     sc: &S,
     f_a: f64,
@@ -488,7 +488,7 @@ fn coulomb_approach<N: Field, S: ContactSpace<N>>(
 /// scene's unit: Kelvin and Tait, as in the Appendix) must not be positive,
 /// and `μ_c` is formed when asked for.
 #[allow(clippy::too_many_arguments)] // each argument is one named part of the answer
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn finish<N: Field, S: ContactSpace<N>>(
     sc: &S,
     e: &N,
@@ -529,7 +529,7 @@ fn finish<N: Field, S: ContactSpace<N>>(
 
 /// `μ_c` as each of `L` lanes' output (`None` when not asked for), refused
 /// when its `Δn = 0`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn critical_output<N: Field, const L: usize>(
     critical: &Option<Option<N>>,
 ) -> Exact<N, [Option<f64>; L]> {

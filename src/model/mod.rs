@@ -41,7 +41,7 @@ pub(crate) enum Fail<U> {
 }
 
 impl<U> From<ImpactError> for Fail<U> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn from(e: ImpactError) -> Self {
         Fail::Refused(e)
     }
@@ -50,12 +50,12 @@ impl<U> From<ImpactError> for Fail<U> {
 /// The model's result in the field `N`.
 pub(crate) type Exact<N, T> = Result<T, Fail<<N as Field>::Undecided>>;
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn sign<N: Field>(x: &N) -> Exact<N, Ordering> {
     x.sign().map_err(Fail::Undecided)
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
     Ok(if sign(x)? == Ordering::Less {
         x.neg()
@@ -67,7 +67,7 @@ pub(crate) fn abs<N: Field>(x: &N) -> Exact<N, N> {
 /// The output correctly rounded (an exact zero as `+0.0`; in `fast`, within
 /// the promised error, [`crate::accuracy`]), or its refusal when it rounds
 /// beyond the f64 range.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
     let v = x.round_output(output.scale_kind()).map_err(Fail::Undecided)?;
     finite_output(output, v)
@@ -75,7 +75,7 @@ pub(crate) fn out<N: Field>(output: Output, x: &N) -> Exact<N, f64> {
 
 /// [`out`] of each of `L` lanes ([`Field::lanes_output`]; `[out]` for a
 /// field of one point).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn outs<N: Field, const L: usize>(output: Output, x: &N) -> Exact<N, [f64; L]> {
     let mut values = [0.0; L];
     x.lanes_output(output.scale_kind(), &mut values)
@@ -87,7 +87,7 @@ pub(crate) fn outs<N: Field, const L: usize>(output: Output, x: &N) -> Exact<N, 
 }
 
 /// `v`, or the refusal of `output` beyond the f64 range.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn finite_output<U>(output: Output, v: f64) -> Result<f64, Fail<U>> {
     if v.is_finite() {
         Ok(v)
@@ -99,7 +99,7 @@ fn finite_output<U>(output: Output, v: f64) -> Result<f64, Fail<U>> {
 /// `x √y` correctly rounded (in `fast`, within the promised error), or its
 /// refusal beyond the f64 range, of each of `L` lanes
 /// ([`Field::lanes_output_times_sqrt`]; `[x √y]` for a field of one point).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn outs_times_sqrt<N: Field, const L: usize>(output: Output, x: &N, y: &N) -> Exact<N, [f64; L]> {
     let mut values = [0.0; L];
     x.lanes_output_times_sqrt(y, output.scale_kind(), &mut values)
@@ -110,7 +110,7 @@ pub(crate) fn outs_times_sqrt<N: Field, const L: usize>(output: Output, x: &N, y
     Ok(values)
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn half<N: Field>() -> N {
     N::of(0.5)
 }

@@ -32,7 +32,7 @@ pub(crate) struct Torsion {
 /// The torsional model in the field `N`. The change `ω_n − Ω_n` and the sum
 /// `ω_n + Ω_n` are each formed from their branch's formula, so the loss
 /// `½ I_n (ω_n − Ω_n)(ω_n + Ω_n)` never subtracts two nearly equal energies.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut TorsionalOutcome) -> Exact<N, ()> {
     torsional_lanes::<N, 1>(std::array::from_ref(v), energy, std::array::from_mut(outcome))
 }
@@ -42,7 +42,7 @@ pub(crate) fn torsional<N: Field>(v: &Torsion, energy: bool, outcome: &mut Torsi
 /// written, or an error (in lanes, that the points are to be solved one by
 /// one). Each output of every lane is tested in [`torsional`]'s order before
 /// any outcome is written.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn torsional_lanes<N: Field, const L: usize>(
     v: &[Torsion; L],
     energy: bool,

@@ -5,14 +5,14 @@ use crate::arith::Field;
 
 pub(super) type V3<N> = [N; 3];
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn vector<N: Field>(x: [f64; 3]) -> V3<N> {
     [N::of(x[0]), N::of(x[1]), N::of(x[2])]
 }
 
 /// The vector `x(i)` of each lane `i` (in a field of one point, [`vector`]
 /// of `x(0)`).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn lanes_vector<N: Field>(x: impl Fn(usize) -> [f64; 3]) -> V3<N> {
     [
         N::of_lanes(|i| x(i)[0]),
@@ -21,12 +21,12 @@ pub(super) fn lanes_vector<N: Field>(x: impl Fn(usize) -> [f64; 3]) -> V3<N> {
     ]
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn dot<N: Field>(a: &V3<N>, b: &V3<N>) -> N {
     a[0].mul_add(&b[0], &a[1].mul_add(&b[1], &a[2].mul(&b[2])))
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn cross<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
     [
         a[1].mul_add(&b[2], &a[2].mul(&b[1]).neg()),
@@ -36,7 +36,7 @@ pub(super) fn cross<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
 }
 
 /// `f` applied to each component. `f` is a closure marked
-/// `#[inline(always)]`: unmarked, a closure called three times is a function
+/// `#[inline(always)]` (in an optimised build): unmarked, a closure called three times is a function
 /// of its own to the compiler, which may leave it out of line, and then out
 /// of the compiled copy that runs (`crate::kernels`; nine such closures of the
 /// spatial model, unmarked, made two bodies in space 4–6 % slower in `fast`
@@ -44,13 +44,13 @@ pub(super) fn cross<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
 /// docs/performance-log.md, 2026-11-29). Which ones the compiler leaves out moves
 /// other inlining too: marking one more (the two-phase law's sliding
 /// approach) made one body in `fast` 4 % slower, so it is left unmarked.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn map<N: Field>(a: &V3<N>, f: impl Fn(&N) -> N) -> V3<N> {
     [f(&a[0]), f(&a[1]), f(&a[2])]
 }
 
 /// `f` applied to each pair of components; `f` as in [`map`].
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn zip<N: Field>(a: &V3<N>, b: &V3<N>, f: impl Fn(&N, &N) -> N) -> V3<N> {
     [f(&a[0], &b[0]), f(&a[1], &b[1]), f(&a[2], &b[2])]
 }
@@ -59,7 +59,7 @@ pub(super) fn zip<N: Field>(a: &V3<N>, b: &V3<N>, f: impl Fn(&N, &N) -> N) -> V3
 // `zip`, for the reason given at `map`.
 
 /// `k a + b`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn axpy<N: Field>(k: &N, a: &V3<N>, b: &V3<N>) -> V3<N> {
     [
         k.mul_add(&a[0], &b[0]),
@@ -69,31 +69,31 @@ pub(super) fn axpy<N: Field>(k: &N, a: &V3<N>, b: &V3<N>) -> V3<N> {
 }
 
 /// `a + b`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn add<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
     [a[0].add(&b[0]), a[1].add(&b[1]), a[2].add(&b[2])]
 }
 
 /// `a − b`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn sub<N: Field>(a: &V3<N>, b: &V3<N>) -> V3<N> {
     [a[0].sub(&b[0]), a[1].sub(&b[1]), a[2].sub(&b[2])]
 }
 
 /// `−a`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn neg<N: Field>(a: &V3<N>) -> V3<N> {
     [a[0].neg(), a[1].neg(), a[2].neg()]
 }
 
 /// `k a`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn scale<N: Field>(k: &N, a: &V3<N>) -> V3<N> {
     [k.mul(&a[0]), k.mul(&a[1]), k.mul(&a[2])]
 }
 
 /// `a / d`, each component divided.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn divide<N: Field>(a: &V3<N>, d: &N) -> V3<N> {
     [a[0].div(d), a[1].div(d), a[2].div(d)]
 }
@@ -102,7 +102,7 @@ pub(super) fn divide<N: Field>(a: &V3<N>, d: &N) -> V3<N> {
 pub(super) type Sym<N> = [N; 6];
 
 /// A tensor of f64 inputs, exactly.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn sym<N: Field>(m: &[f64; 6]) -> Sym<N> {
     [
         N::of(m[0]),
@@ -115,7 +115,7 @@ pub(super) fn sym<N: Field>(m: &[f64; 6]) -> Sym<N> {
 }
 
 /// `m k`, each entry multiplied.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn sym_times<N: Field>(m: &Sym<N>, k: &N) -> Sym<N> {
     [
         m[0].mul(k),
@@ -127,7 +127,7 @@ pub(super) fn sym_times<N: Field>(m: &Sym<N>, k: &N) -> Sym<N> {
     ]
 }
 
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn sym_mul<N: Field>(m: &Sym<N>, x: &V3<N>) -> V3<N> {
     let [xx, yy, zz, xy, xz, yz] = m;
     [
@@ -138,7 +138,7 @@ pub(super) fn sym_mul<N: Field>(m: &Sym<N>, x: &V3<N>) -> V3<N> {
 }
 
 /// The adjugate and the determinant of a symmetric matrix.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn adjugate<N: Field>(m: &Sym<N>) -> (Sym<N>, N) {
     let [a, b, c, d, e, f] = m;
     let adj = [
@@ -154,13 +154,13 @@ pub(super) fn adjugate<N: Field>(m: &Sym<N>) -> (Sym<N>, N) {
 }
 
 /// `v + ω × r`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn point_velocity<N: Field>(v: &V3<N>, w: &V3<N>, r: &V3<N>) -> V3<N> {
     add(v, &cross(w, r))
 }
 
 /// `|x|²` of a vector `x`.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn norm2<N: Field>(x: &V3<N>) -> N {
     dot(x, x)
 }

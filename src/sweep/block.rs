@@ -81,7 +81,7 @@ impl<'a> Block<'a> {
 
     /// Hands each point to `visit` as a [`Row`], its cells gathered into `row`
     /// (a block whose every column was read into cells).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn rows(&self, row: &mut [Cell], visit: &mut impl FnMut(Row<'_>)) {
         debug_assert!(!self.read_as_numbers.contains(&true));
         let axes = self.axes;

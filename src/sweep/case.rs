@@ -104,17 +104,17 @@ impl<C: Case> SweepCase for CaseSweep<C> {
         self.columns.len()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate(&self, point: &C, out: &mut C::Outcome) -> Result<(), ImpactError> {
         self.solver.solve_into(point, out)
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_blocks(&self) -> bool {
         self.solver.in_lanes()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_block(
         &self,
         points: &[C],

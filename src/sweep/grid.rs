@@ -108,7 +108,7 @@ pub(crate) enum Sampler<'a> {
 
 impl Sampler<'_> {
     /// The `i`-th value (`i < len`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn value(&self, i: u64) -> f64 {
         match self {
             Sampler::List(v) => v[i as usize],
@@ -154,7 +154,7 @@ impl Interpolation {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn value(&self, i: u64) -> f64 {
         let Interpolation {
             start,

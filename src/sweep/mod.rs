@@ -46,7 +46,7 @@ pub trait SweepCase: Sync {
     /// Whether [`evaluate_block`](Self::evaluate_block) evaluates points
     /// together; else each point is evaluated as soon as it is set (not
     /// copied aside first: for two laminae that copy cost 5 % of a point).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_blocks(&self) -> bool {
         false
     }
@@ -54,7 +54,7 @@ pub trait SweepCase: Sync {
     /// each point without an answer to `refusals` in order, with its position
     /// and why: each as [`evaluate`](Self::evaluate) answers it, though a
     /// case may evaluate several together.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_block(
         &self,
         points: &[Self::Point],
@@ -74,7 +74,7 @@ pub trait SweepCase: Sync {
     /// Reads number column `column` off a block's `outcomes` into `values`,
     /// as [`read`](Self::read) would into cells: `false` (nothing read) for
     /// a column of names, or a case that reads only cells.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn read_numbers(&self, column: usize, outcomes: &[Self::Outcome], values: &mut [f64]) -> bool {
         let _ = (column, outcomes, values);
         false
@@ -216,12 +216,12 @@ impl<C: SweepCase> Sweep<C> {
     pub fn for_each_in(&self, range: Range<u64>, mut visit: impl FnMut(Row<'_>)) {
         let mut row = vec![Cell::Number(0.0); self.case.columns()];
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || {
                 self.for_each_block_here(
                     range,
                     false,
-                    #[inline(always)]
+                    #[cfg_attr(not(debug_assertions), inline(always))]
                     |block| block.rows(&mut row, &mut visit),
                 )
             },
@@ -234,14 +234,14 @@ impl<C: SweepCase> Sweep<C> {
     /// a pass over every column per point.
     pub fn for_each_block_in(&self, range: Range<u64>, visit: impl FnMut(&Block<'_>)) {
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || self.for_each_block_here(range, true, visit),
         )
     }
 
     /// The block loop: with `typed`, number columns are read straight into
     /// numbers ([`SweepCase::read_numbers`]), else every column into cells.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn for_each_block_here(&self, range: Range<u64>, typed: bool, mut visit: impl FnMut(&Block<'_>)) {
         let start = range.start.max(self.range.start);
         let end = range.end.min(self.range.end);

@@ -65,7 +65,7 @@ const EXPONENT_BITS: u64 = 0x7ff0_0000_0000_0000;
 const MANTISSA_BITS: u64 = (1 << 52) - 1;
 
 /// `m` raised to [`FLOOR`] (a NaN stays a NaN).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn floored(m: f64) -> f64 {
     if m < FLOOR { FLOOR } else { m }
 }
@@ -74,7 +74,7 @@ pub(super) fn floored(m: f64) -> f64 {
 /// exact zero times anything finite is an exact zero), without a branch:
 /// every `M` is 0 or at least [`FLOOR`] (or ∞, or a NaN: see [`max`]), so
 /// `min(FLOOR, M_x, M_y)` is 0 for a zero factor and [`FLOOR`] otherwise.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn product_magnitude(mx: f64, my: f64) -> f64 {
     max(mx * my, min(FLOOR, min(mx, my)))
 }
@@ -84,19 +84,19 @@ pub(super) fn product_magnitude(mx: f64, my: f64) -> f64 {
 /// becomes a NaN only from an overflow (which leaves a NaN or infinity in `h`)
 /// or from `0 · ∞` between an exact zero and an overflowed `M`, whose product
 /// is the exact zero it is taken for.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn max(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
 /// The smaller of `a` and `b`, `b` if either is a NaN; see [`max`].
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn min(a: f64, b: f64) -> f64 {
     if a < b { a } else { b }
 }
 
 /// `a + b = s + e` exactly (Knuth's TwoSum).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
@@ -131,7 +131,7 @@ pub(crate) struct Compensated {
 
 impl Compensated {
     /// An f64, exactly (`λ = 0`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn exact(x: f64) -> Self {
         Compensated {
             h: x,
@@ -159,7 +159,7 @@ impl Compensated {
     /// `M = M_x + M_y`, the first rounding is at most `u · λ u M`, the second at
     /// most `u (λ + 1) u M`, and the inherited errors at most `λ² u² M`: so
     /// `ε_s = λ² + 2λ + 2 ≤ (λ + 2)²`, and `|l| ≤ (λ + 1) u M (1 + u)`: `λ_s = λ + 2`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn add(&self, o: &Self) -> Self {
         let (s, t) = two_sum(self.h, o.h);
         Compensated {
@@ -170,7 +170,7 @@ impl Compensated {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn neg(&self) -> Self {
         Compensated {
             h: -self.h,
@@ -179,7 +179,7 @@ impl Compensated {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn sub(&self, o: &Self) -> Self {
         self.add(&o.neg())
     }
@@ -191,7 +191,7 @@ impl Compensated {
     /// inherited errors at most `(λ_x² + λ_y²) u² M` (to first order; the rest is
     /// in the slack). So `ε_p = λ_x² + λ_y² + λ_x λ_y + 2λ_x + λ_y + 3
     /// ≤ (λ_x + λ_y + 2)²`, and `λ_p = λ_x + λ_y + 2`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn mul(&self, o: &Self) -> Self {
         let p = self.h * o.h;
         let t = self.h.mul_add(o.h, -p);
@@ -282,7 +282,7 @@ impl Compensated {
     /// still only grows). An exact zero's root is the exact zero. A radicand
     /// the check refuses (`h` below 2⁻⁹⁰⁰ or not positive, `K` too large,
     /// out of range) is [`Unsettled::Root`]: double-double decides it.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn sqrt(&self) -> Result<Self, Unsettled> {
         if self.m == 0.0 {
             return Ok(Compensated::exact(0.0));
@@ -311,7 +311,7 @@ impl Compensated {
     /// non-zero `M ≥ 2⁻⁹⁰⁰` and `λ ≥ 2` keep the product above the subnormal
     /// range); [`Unsettled::Range`] when nothing can be certified (overflow,
     /// or `λ` past [`LAMBDA_MAX`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn settled(&self) -> Result<(f64, f64, f64), Unsettled> {
         let (s, c) = two_sum(self.h, self.l);
         let bound = self.lambda * self.lambda * U2 * self.m * M_GROWTH;

@@ -105,7 +105,7 @@ const UNDERFLOW: f64 = f64::MIN_POSITIVE;
 /// carried: where a bound enters other than linearly, here `E_x` beside
 /// `|h_x|`, it is taken grown by that factor, so the factor does not
 /// compound from step to step.)
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn product_error<const R: bool, const S: bool>(x: &Filtered<R, S>, y: &Filtered<R, S>, e_z: f64) -> f64 {
     x.e.mul_add(RUNNING_SLACK, x.h.abs())
         .mul_add(y.e, y.h.abs().mul_add(x.e, e_z))
@@ -113,7 +113,7 @@ fn product_error<const R: bool, const S: bool>(x: &Filtered<R, S>, y: &Filtered<
 
 /// A rounded result's running bound: the operands' error `carried` plus the
 /// rounding `u |h|` and an underflow; an exact zero (`M = 0`) has none.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn rounded_error(m: f64, carried: f64, h: f64) -> f64 {
     if m == 0.0 {
         0.0
@@ -129,7 +129,7 @@ fn rounded_error(m: f64, carried: f64, h: f64) -> f64 {
 /// lanes takes 4–5 % fewer instructions a point (callgrind,
 /// docs/performance-log.md, 2026-12-07 (later)); the running bound's
 /// rules, with masks, took 8–10 % more in space, so they keep their selects.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn kept_or(keep: bool, x: f64, otherwise: f64) -> f64 {
     let mask = u64::from(keep).wrapping_neg();
     f64::from_bits((x.to_bits() & mask) | (otherwise.to_bits() & !mask))
@@ -145,13 +145,13 @@ thread_local! {
 /// Sets the scales the outputs of the next `fast` evaluation on this thread
 /// are measured against: called by the one function that runs it,
 /// `impact::fast_or_exact`, with the impact's own scales.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn measure_against(scales: &ErrorScales) {
     SCALES.with(|s| s.set(scales.by_kind()));
 }
 
 /// The scale of outputs of `kind` in the impact being evaluated.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn scale_of(kind: ScaleKind) -> f64 {
     SCALES.with(|s| s.get()[kind as usize])
 }
@@ -159,7 +159,7 @@ fn scale_of(kind: ScaleKind) -> f64 {
 /// `M` of `h`, one correct rounding of an exact value where no underflow
 /// lost bits (or the exact zero it then is): `|x| ≤ |h| (1 + 2u)` and
 /// `|x − h| ≤ u |x|`, so `λ = 1` (any `λ` for a zero, whose `M` is 0).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn once_rounded(h: f64) -> f64 {
     if h == 0.0 {
         0.0
@@ -197,14 +197,14 @@ pub(crate) struct Filtered<const RUNNING: bool = true, const STATIC: bool = true
 /// `M` without `STATIC`: `0` for an exact zero, else `1` (a flag, not a
 /// magnitude), so that a product's is the factors' product and a sum's
 /// their maximum.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn zero_flag(zero: bool) -> f64 {
     if zero { 0.0 } else { 1.0 }
 }
 
 impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// An f64 input, exactly (`λ = 0`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn exact(x: f64) -> Self {
         Filtered {
             h: x,
@@ -221,7 +221,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     }
 
     /// The plain f64 value.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn value(&self) -> f64 {
         self.h
     }
@@ -233,7 +233,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// when it is zero or subnormal: `M = |h| (1 + 2u)` (`0` for a zero), which
     /// decides the sign of every such sum (a cancelled difference of two
     /// inputs is an exact zero); its `λ = 1` is the general rule's.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn add(&self, o: &Self) -> Self {
         let h = self.h + o.h;
         // λ depends on the path alone (module documentation), and so does
@@ -263,12 +263,12 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn neg(&self) -> Self {
         Filtered { h: -self.h, ..*self }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn sub(&self, o: &Self) -> Self {
         self.add(&o.neg())
     }
@@ -276,7 +276,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// The product. `|x y − h| ≤ |x| E_y + |h_y| E_x + u |h|` with
     /// `|h_y| ≤ M_y (1 + λ_y u)` and `M = M_x M_y` (zero when a factor is an
     /// exact zero): `λ_p = λ_x + λ_y + 1`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn mul(&self, o: &Self) -> Self {
         let h = self.h * o.h;
         let m = if STATIC {
@@ -302,7 +302,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// Of exact operands with a normal result it is one correct rounding:
     /// `M = |h| (1 + 2u)` (with the rule's `λ = 1`), which decides its sign
     /// however much cancels.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn mul_add(&self, b: &Self, c: &Self) -> Self {
         let h = self.h.mul_add(b.h, c.h);
         let exact = self.lambda + b.lambda + c.lambda == 0.0 && h.abs() >= f64::MIN_POSITIVE;
@@ -338,7 +338,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// by values whose exact value is not zero (the exact stages could not
     /// divide otherwise), so the quotient's exact value is a real number and
     /// its product with an exact zero the exact zero it is taken for.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn div(&self, o: &Self) -> Self {
         let q = self.h / o.h;
         let m = if STATIC {
@@ -371,7 +371,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
 
     /// `M` of the quotient `q` of `self` by `o` ([`Filtered::div`]): zero
     /// for an exact zero dividend, `∞` for an uncertain divisor.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn static_quotient_magnitude(&self, o: &Self, q: f64) -> f64 {
         let error_y = (o.lambda * (U * SLACK)) * o.m;
         let y_low = (o.h.abs() - error_y) * (1.0 - 4.0 * U);
@@ -383,7 +383,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
 
     /// The quotient of two f64 inputs, `rounded` being their f64 quotient:
     /// one rounding of an exact value (or an exact zero).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn quotient_of(num: f64, rounded: f64) -> Self {
         // A subnormal or underflowed quotient is off by at most 2⁻¹⁰⁷⁵, far
         // below u M for the floored M.
@@ -409,7 +409,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// `x_low = h − E > 0`, `|√x − √h| ≤ E / (√x_low + √h)` and the rounding
     /// `u √h`; `M = M_x / √x_low ≥ √M_x ≥ √x`, `λ = λ_x + 2`. An interval
     /// reaching zero decides nothing ([`Uncertain::Close`]).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn sqrt(&self) -> Result<Self, Uncertain> {
         let s = self.h.sqrt();
         if self.m == 0.0 {
@@ -463,7 +463,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// (F3) one, each grown by its slack (a NaN running bound leaves the
     /// static one); without `RUNNING`, the static one; without `STATIC`,
     /// the running one.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn error_bound(&self) -> f64 {
         let running = self.e * RUNNING_SLACK;
         if !STATIC {
@@ -480,7 +480,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// within its limit, `|h|` finite and above the bound), and whether
     /// `h > 0`: [`Filtered::sign`]'s common path, without a branch (so that
     /// lanes decide theirs together).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn clear_sign(&self) -> (bool, bool) {
         let magnitude = self.h.abs();
         // A finite |h| above the bound makes the bound finite too (a NaN
@@ -491,7 +491,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     }
 
     /// The exact value's sign, unless the bound cannot decide it.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn sign(&self) -> Result<Ordering, Uncertain> {
         let (clear, positive) = self.clear_sign();
         if clear {

@@ -11,14 +11,14 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// (`λ = 0`) are exact; a larger bound (a cancellation below the scale,
     /// a nearly singular solve) is [`Uncertain::Inaccurate`], and a value out
     /// of the f64 range or `λ` past its limit [`Uncertain::Range`].
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn output(&self, kind: ScaleKind) -> Result<f64, Uncertain> {
         self.output_against(scale_of(kind))
     }
 
     /// [`Filtered::output`] against the scale `scale` of its kind, given
     /// (for one point of several evaluated together, `super::Lanes`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn output_against(&self, scale: f64) -> Result<f64, Uncertain> {
         let (v, accepted) = self.output_test(scale);
         if accepted {
@@ -32,7 +32,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
 
     /// [`Filtered::output_against`]'s value and whether it is accepted,
     /// without a branch (so that lanes test theirs together).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn output_test(&self, scale: f64) -> (f64, bool) {
         let v = self.h + 0.0;
         // (Tested on the returned value, so that the caller's test of the
@@ -52,7 +52,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// grown by `1 + 2⁻¹⁰` (the dropped terms and this bound's own
     /// roundings) and the smallest normal (a product that underflowed), and
     /// accepted as [`Filtered::output`]'s.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn output_times_sqrt(&self, y: &Self, kind: ScaleKind) -> Result<f64, Uncertain> {
         self.output_times_sqrt_against(y, scale_of(kind))
     }
@@ -60,7 +60,7 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// [`Filtered::output_times_sqrt`] against the scale `scale` of its
     /// kind, given (for one point of several evaluated together,
     /// `super::super::Lanes`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn output_times_sqrt_against(&self, y: &Self, scale: f64) -> Result<f64, Uncertain> {
         let v = self.h * y.h.sqrt() + 0.0;
         if !v.is_finite() || self.lambda > LAMBDA_MAX || y.lambda > LAMBDA_MAX {

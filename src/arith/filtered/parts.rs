@@ -5,13 +5,13 @@ use super::Filtered;
 
 impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
     /// `(h, M, λ, E)` (`E` is `0` without `RUNNING`).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(in crate::arith) fn parts(&self) -> (f64, f64, f64, f64) {
         (self.h, self.m, self.lambda, self.e)
     }
 
     /// The value whose [`Filtered::parts`] are `(h, m, lambda, e)`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(in crate::arith) fn of_parts(h: f64, m: f64, lambda: f64, e: f64) -> Self {
         Filtered { h, m, lambda, e }
     }

@@ -295,7 +295,7 @@ struct Space<'a> {
 }
 
 impl Model<SpatialOutcome> for Space<'_> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn run<N: Radical>(&self, out: &mut SpatialOutcome) -> Exact<N, ()> {
         let prepared = self.prepared.and_then(Prepared::get::<Geometry<N>>);
         spatial::<N>(self.impact, prepared, self.outputs, out)
@@ -423,7 +423,7 @@ impl Case for SpatialImpact {
     }
 
     /// A sweep over the bodies' velocities alone, its geometry formed once.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn in_lanes(fixed: &Fixed) -> bool {
         fixed.lanes.is_some()
     }
@@ -432,7 +432,7 @@ impl Case for SpatialImpact {
     /// validated as its single solve validates it, its approach decided in
     /// f64 and every input of the bodies in this case's fast range (else
     /// the points are solved one by one).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate_lanes(
         impacts: &[Self; LANES],
         fixed: &Fixed,
@@ -456,13 +456,13 @@ impl Case for SpatialImpact {
         // A compiled body of its own, as the laminae's lanes
         // (`impact::barrier`).
         crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || spatial_lanes::<MotionLanes, LANES>(&valid, Some(geometry), outputs, out),
         )
         .is_ok()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn evaluate(
         &self,
         fixed: &Fixed,

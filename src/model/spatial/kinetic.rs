@@ -22,7 +22,7 @@
 use super::*;
 
 /// The answer of the two-phase law: regime `prescribed`, no couple.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(super) fn kinetic<N: Radical, const L: usize>(
     sc: &mut Scene<'_, N>,
     phases: Phases,
@@ -36,7 +36,7 @@ pub(super) fn kinetic<N: Radical, const L: usize>(
     // The approach's sticking impulse (W P = −u: it ends with U = 0).
     let stick = map(
         &sym_mul(&sc.g.adj, &sc.u),
-        #[inline(always)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         |x| x.div(&sc.g.det).neg(),
     );
     let stick = sc.solution(stick, zero.clone());
@@ -121,7 +121,7 @@ pub(super) fn kinetic<N: Radical, const L: usize>(
             zip(
                 &approach_t,
                 a,
-                #[inline(always)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 |x, y| k.mul_add(y, x),
             )
         }

@@ -58,7 +58,7 @@ use super::vector::*;
 /// The leading principal minors `I_xx`, `I_xx I_yy − I_xy²` and `det I` of a
 /// tensor `[xx, yy, zz, xy, xz, yz]`: it is positive definite when all three
 /// are positive (Sylvester's criterion).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
     let m = sym::<N>(tensor);
     let second = m[0].mul_add(&m[1], &m[3].mul(&m[3]).neg());
@@ -68,7 +68,7 @@ pub(crate) fn leading_minors<N: Field>(tensor: &[f64; 6]) -> [N; 3] {
 
 /// The relative normal contact velocity `u·n` (unnormalised), by the same
 /// operations as the scene: what validation decides the approach on.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn approach<N: Field>(impact: &SpatialImpact) -> N {
     let c: V3<N> = vector(impact.contact.point);
     let n = vector(impact.contact.normal);
@@ -92,7 +92,7 @@ fn three(o: &[Output], from: usize) -> [Output; 3] {
 /// approaches (`u·n < 0`, decided exactly in the exact fields). `prepared`
 /// is its geometry in `N` when a sweep formed it once (the same values
 /// [`Geometry::new`] forms).
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn spatial<N: Radical>(
     impact: &SpatialImpact,
     prepared: Option<&Geometry<N>>,
@@ -113,7 +113,7 @@ pub(crate) fn spatial<N: Radical>(
 /// written, or an error (in lanes, that the points are to be solved one by
 /// one); each output of every lane is tested, in [`spatial`]'s order,
 /// before any outcome is written.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub(crate) fn spatial_lanes<N: Radical, const L: usize>(
     impacts: &[SpatialImpact; L],
     prepared: Option<&Geometry<N>>,
@@ -164,12 +164,12 @@ pub(crate) fn spatial_lanes<N: Radical, const L: usize>(
             (
                 map(
                     &sc.ut,
-                    #[inline(always)]
+                    #[cfg_attr(not(debug_assertions), inline(always))]
                     |x| et.mul(x).neg(),
                 ),
                 map(
                     &sc.ut,
-                    #[inline(always)]
+                    #[cfg_attr(not(debug_assertions), inline(always))]
                     |x| one.sub(&et).mul(x),
                 ),
             )
@@ -241,13 +241,13 @@ struct Written<N, const L: usize> {
 }
 
 /// `x` on body A (`index` 0), `−x` on body B, which the impulse acts on reversed.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn on_body<N: Field>(index: usize, x: N) -> N {
     if index == 0 { x } else { x.neg() }
 }
 
 /// Writes an answer's outputs to each lane's `outcome`, whole or not at all.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn write<N: Radical, const L: usize>(
     sc: &Scene<'_, N>,
     answer: Written<N, L>,
@@ -271,13 +271,13 @@ fn write<N: Radical, const L: usize>(
         let names = &SPATIAL_BODY_OUTPUTS[index];
         let dv = map(
             &s.p,
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             |x| on_body(index, x.mul(&b.inv_m)),
         );
         let moment = axpy(&s.kappa, &sc.g.n, &cross(&b.r, &s.p));
         let dw = map(
             &sym_mul(&b.inv_i, &moment),
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             |x| on_body(index, x.clone()),
         );
         let velocity = Scene::<N>::vector_out::<L>(three(names, 0), &add(&motion.v, &dv))?;

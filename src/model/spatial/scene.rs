@@ -15,7 +15,7 @@ pub(super) struct Inertial<N> {
 }
 
 impl<N: Field> Inertial<N> {
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn new(body: &RigidBody, c: &V3<N>) -> Self {
         let m = N::of(body.mass);
         let tensor = sym::<N>(&body.inertia);
@@ -42,7 +42,7 @@ pub(super) struct Motion<N> {
 impl<N: Field> Motion<N> {
     /// The motion of each lane's body, `body(i)` its velocity and angular
     /// velocity at lane `i`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn of_lanes(body: impl Fn(usize) -> ([f64; 3], [f64; 3])) -> Self {
         Motion {
             v: lanes_vector(|i| body(i).0),
@@ -51,7 +51,7 @@ impl<N: Field> Motion<N> {
     }
 
     /// The contact-point velocity `v + ω × r` of a body with lever arm `r`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn contact_velocity(&self, r: &V3<N>) -> V3<N> {
         point_velocity(&self.v, &self.w, r)
     }
@@ -64,7 +64,7 @@ impl<N: Field> Motion<N> {
 /// tiny one (a sphere on a level plane: the exact stages would otherwise
 /// fall through to fractions). Every field gets the same value; in f64 the
 /// difference is already `+0` for a normal of length a power of two.
-#[inline(always)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 fn tangential_part<N: Field>(x: &V3<N>, a: &N, n: &V3<N>, axis: Option<usize>) -> V3<N> {
     let mut part = axpy(&a.neg(), n, x);
     if let Some(k) = axis {
@@ -94,7 +94,7 @@ pub(crate) struct Geometry<N> {
 
 impl<N: Field> Geometry<N> {
     /// The geometry of a validated `impact`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(crate) fn new(impact: &SpatialImpact) -> Self {
         let c: V3<N> = vector(impact.contact.point);
         let n = vector(impact.contact.normal);
@@ -175,7 +175,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// The scene of validated `impacts` whose geometry is `g`, one in each
     /// of the field's `L` lanes: points of one sweep that differ in the
     /// bodies' velocities alone (the law and twist read are the first's).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn new<const L: usize>(impacts: &'a [SpatialImpact; L], g: &'a Geometry<N>) -> Self {
         let impact = &impacts[0];
         let motion = |b: &RigidBody| (b.velocity, b.angular_velocity);
@@ -216,7 +216,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `(P, κ)` with its `P·n` and `P_t`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn solution(&self, p: V3<N>, kappa: N) -> Solution<N> {
         let pn = dot(&p, &self.g.n);
         let pt = tangential_part(&p, &pn.div(&self.g.nu), &self.g.n, self.g.axis);
@@ -232,7 +232,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The solution of branches `(t, z)` (`None`: its system is singular),
     /// the kept branch targeting `U_t = −e_t u_t`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn solve(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
         let slot = Self::slot(t, z, et);
         if let Some(found) = &self.cache[slot] {
@@ -242,7 +242,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         // solution): the cycle's one out-of-line function is `run`'s, so it
         // is compiled into the copy that runs (its `fma`s one instruction).
         let found = crate::kernels::run(
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             || self.compute(t, z, et),
         )?;
         self.cache[slot] = Some(found.clone());
@@ -252,7 +252,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     /// `κ = c₀ + c₁ (P·n)` of the sliding twist: `c₀ = −e_z s̃/k`,
     /// `c₁ = τ μ_z ρ_p/ν`, `τ = −sgn s̃` or, without spin, the sign of the
     /// restitution branch's couple with the same tangential branch.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn twist_terms(&mut self, t: Tangential, et: f64) -> Exact<N, (N, N)> {
         let Some(twist) = self.twist else {
             return Ok((N::of(0.0), N::of(0.0)));
@@ -276,7 +276,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         Ok((c0, c1))
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn compute(&mut self, t: Tangential, z: Spin, et: f64) -> Exact<N, Option<Solution<N>>> {
         let ds = match self.twist {
             Some(tw) => N::of(1.0).add(&N::of(tw.restitution)).mul(&self.s).neg(),
@@ -289,7 +289,7 @@ impl<'a, N: Radical> Scene<'a, N> {
                     &self.g.n,
                     &map(
                         &self.ut,
-                        #[inline(always)]
+                        #[cfg_attr(not(debug_assertions), inline(always))]
                         |x| N::of(1.0).add(&N::of(et)).mul(x).neg(),
                     ),
                 );
@@ -317,7 +317,7 @@ impl<'a, N: Radical> Scene<'a, N> {
                         let p = zip(
                             &a,
                             &b,
-                            #[inline(always)]
+                            #[cfg_attr(not(debug_assertions), inline(always))]
                             |ai, bi| ai.mul(&den).sub(&c1.mul(bi).mul(&na)).div(&scale),
                         );
                         let kappa = c1.mul_add(&dot(&p, &self.g.n), &c0);
@@ -375,7 +375,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The sliding impulse's direction `n + c √(ν/|w_s|²) w_s`, and whether
     /// it is `n` itself; `None` when the sticking system it needs is singular.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn direction(&mut self, z: Spin) -> Exact<N, Option<(V3<N>, bool)>> {
         if self.law.c == 0.0 {
             return Ok(Some((self.g.n.clone(), true)));
@@ -404,7 +404,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// Whether the kept tangential branch holds: `P·n ≠ 0`, `ν |P_t|² ≤ f² (P·n)²`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn tangential_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
         let Some(s) = s else { return Ok(false) };
         if sign(&s.pn)? == Ordering::Equal {
@@ -418,7 +418,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// Whether the twist's restitution branch holds: `P·n ≠ 0`,
     /// `(κ + e_z s̃/k)² ≤ (μ_z ρ_p P·n/ν)²`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn spin_holds(&self, s: &Option<Solution<N>>) -> Exact<N, bool> {
         let (Some(s), Some(twist)) = (s, self.twist) else {
             return Ok(false);
@@ -435,7 +435,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// The one valid combination of branches, with its solution.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn choose(&mut self) -> Exact<N, (Tangential, Spin, Option<Solution<N>>)> {
         let et = self.law.kept.unwrap_or(0.0);
         let tangentials: &[Tangential] = if self.law.kept.is_some() {
@@ -495,7 +495,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// `|P_t|/|P_n| = √(ν |P_t|²) / |P·n|` of a solution, a magnitude
     /// (`None` when `P·n = 0`), in each of `L` lanes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn ratio<const L: usize>(
         &self,
         s: &Solution<N>,
@@ -513,13 +513,13 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `x/|n|` correctly rounded, in each of `L` lanes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn along<const L: usize>(&self, output: Output, x: &N) -> Exact<N, [f64; L]> {
         outs_times_sqrt::<N, L>(output, &x.div(&self.g.nu), &self.g.nu)
     }
 
     /// A vector's three outputs, in each of `L` lanes.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn vector_out<const L: usize>(outputs: [Output; 3], x: &V3<N>) -> Exact<N, [[f64; 3]; L]> {
         let x0 = outs::<N, L>(outputs[0], &x[0])?;
         let x1 = outs::<N, L>(outputs[1], &x[1])?;
@@ -528,7 +528,7 @@ impl<'a, N: Radical> Scene<'a, N> {
     }
 
     /// `(U_t, u_t + U_t)` of an answer that changes `u` by `Δu`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn slip_after(&self, du: &V3<N>) -> (V3<N>, V3<N>) {
         let dun = dot(du, &self.g.n).div(&self.g.nu);
         let dut = tangential_part(du, &dun, &self.g.n, self.g.axis);
@@ -537,7 +537,7 @@ impl<'a, N: Radical> Scene<'a, N> {
             zip(
                 &self.ut,
                 &dut,
-                #[inline(always)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 |x, y| N::of(2.0).mul_add(x, y),
             ),
         )
@@ -545,7 +545,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The work `P·(u + U) + κ (s̃ + S̃)` (`−2 T_L`), with
     /// `u + U = (1 − e)(u·n) n/ν + (u_t + U_t)` (Kelvin and Tait, as Eq 8).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn work(&self, s: &Solution<N>, e: &N, slip_sum: &V3<N>, spin_sum: &N) -> N {
         let normal_work = N::of(1.0).sub(e).mul(&self.un).mul(&s.pn).div(&self.g.nu);
         s.kappa.mul_add(spin_sum, &dot(&s.p, slip_sum).add(&normal_work))
@@ -553,7 +553,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// The contact velocity at one instant (`u·n`, `u_t`, `s̃`) as outputs,
     /// named by its normal, slip (x, y, z) and spin outputs.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn contact_velocity_at<const L: usize>(
         &self,
         [normal, x, y, z, spin]: [Output; 5],
@@ -573,7 +573,7 @@ impl<'a, N: Radical> Scene<'a, N> {
 
     /// `T_M = ½ (u, s̃)ᵀ 𝒲̃⁻¹ (u, s̃)` (with twist) or `½ uᵀ W⁻¹ u`, by the
     /// adjugate and the Schur complement of `W`.
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn max_loss(&self) -> N {
         let a = sym_mul(&self.g.adj, &self.u);
         let mut twice = dot(&self.u, &a).div(&self.g.det);
@@ -586,7 +586,7 @@ impl<'a, N: Radical> Scene<'a, N> {
         half::<N>().mul(&twice)
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn initial_energy(&self) -> N {
         let mut total = N::of(0.0);
         for (b, motion) in self.g.bodies.iter().zip(&self.motion) {
