@@ -110,8 +110,9 @@ pub fn force_portable() {
     SELECTED.store(PORTABLE, Ordering::Relaxed);
 }
 
-/// Whether the CPU has every x86-64-v3 feature the fast copy is compiled for.
-fn cpu_has_v3() -> bool {
+/// Whether the CPU has every x86-64-v3 feature the fast copy is compiled for
+/// (whether or not this build compiles that copy: [`V3_COMPILED`]).
+pub fn cpu_has_v3() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
         std::arch::is_x86_feature_detected!("avx2")

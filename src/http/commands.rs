@@ -1,6 +1,7 @@
-//! The binary's commands: `serve` (the default), `healthcheck`, `openapi`,
-//! `solve` and `sweep`, each run on a tokio runtime of its own. `main.rs`
-//! only parses the command line and calls [`run_command`].
+//! The binary's commands: `serve` (the default), `healthcheck`, `solve` and
+//! `sweep`, each run on a tokio runtime of its own, and `openapi`, `kernels`
+//! and `collect`, which need none. `main.rs` only parses the command line and
+//! calls [`run_command`].
 
 use std::process::ExitCode;
 
@@ -22,6 +23,10 @@ pub fn run_command(cli: Cli) -> ExitCode {
     match cli.command {
         Some(Command::Openapi) => {
             print!("{}", crate::http::openapi_json());
+            ExitCode::SUCCESS
+        }
+        Some(Command::Kernels) => {
+            println!("{}", crate::kernels::selected().as_str());
             ExitCode::SUCCESS
         }
         Some(Command::Healthcheck { addr }) => run(healthcheck(addr)),

@@ -31,6 +31,9 @@ pub enum Command {
     Serve(ServiceConfig),
     /// Print the OpenAPI 3.1 document.
     Openapi,
+    /// Print which compiled copy of the hot code runs: `x86-64-v3` or
+    /// `portable` (what `--kernels` selects on this CPU, in this build).
+    Kernels,
     /// Exit 0 when the service at ADDR answers `GET /healthz` with 200 (for container health checks).
     Healthcheck {
         /// Address of the service.
