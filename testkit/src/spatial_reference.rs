@@ -1581,6 +1581,9 @@ pub struct Expect {
     pub lo: Q,
     pub hi: Q,
     pub y: Q,
+    /// [`Expect::value`], once asked for (a rational square root to 2⁻¹⁹⁹
+    /// is most of what measuring an output costs).
+    value: std::sync::OnceLock<Q>,
 }
 
 impl Expect {
@@ -1589,17 +1592,19 @@ impl Expect {
     }
 
     /// The reference value (the lower evaluation) to 2⁻¹⁹⁹.
-    pub fn value(&self) -> Q {
-        if self.y == Q::one() {
-            self.lo.clone()
-        } else {
-            &self.lo * sqrt_lower(&self.y)
-        }
+    pub fn value(&self) -> &Q {
+        self.value.get_or_init(|| {
+            if self.y == Q::one() {
+                self.lo.clone()
+            } else {
+                &self.lo * sqrt_lower(&self.y)
+            }
+        })
     }
 
     /// The reference value, approximately.
     pub fn approx(&self) -> f64 {
-        to_f64(&self.value())
+        to_f64(self.value())
     }
 }
 
@@ -1676,6 +1681,7 @@ fn expect(name: String, lo: &R, hi: &R, y: &R) -> Expect {
         lo: lo.q(),
         hi: hi.q(),
         y: y.q(),
+        value: std::sync::OnceLock::new(),
     }
 }
 

@@ -1132,10 +1132,14 @@ impl Errors {
     }
 }
 
-/// The error of `fast` in ulps of `scale` (or of the reference value where larger).
-fn ulps_of(fast: f64, reference: f64, exact: &Q, scale: f64) -> f64 {
-    let diff = to_f64(&(q(fast) - exact)).abs();
-    diff / ulp_of(scale.abs().max(reference.abs()))
+/// `|fast − exact|`, rounded to f64.
+fn error_of(fast: f64, exact: &Q) -> f64 {
+    to_f64(&(q(fast) - exact)).abs()
+}
+
+/// An error in ulps of the larger of `scale` and `reference`.
+fn in_ulps(error: f64, reference: f64, scale: f64) -> f64 {
+    error / ulp_of(scale.abs().max(reference.abs()))
 }
 
 /// The group of an output name, for the report (components together).
@@ -1221,9 +1225,9 @@ fn measure(errors: &mut Errors, case: &Case, o: &SpatialOutcome, a: &Answer) {
             panic!("no scale for {name}")
         };
         let reference = e.approx();
-        let exact = e.value();
-        let err = ulps_of(got[name], reference, &exact, scale * k);
-        let raw = ulps_of(got[name], reference, &exact, scale);
+        let error = error_of(got[name], e.value());
+        let err = in_ulps(error, reference, scale * k);
+        let raw = in_ulps(error, reference, scale);
         let fixed = name.contains("initial") || name == "energy.max_loss" || name == "restitution";
         rows.push((group(name), err, raw, fixed));
     }
@@ -1231,15 +1235,15 @@ fn measure(errors: &mut Errors, case: &Case, o: &SpatialOutcome, a: &Answer) {
     errors.inside_ties += usize::from(tie);
     match (o.critical_impulse_ratio, &a.critical) {
         (Some(v), Some(e)) => {
-            let exact = e.value();
             let scale = sp * (1.0 + e.approx().abs()) / z.pn_c;
-            let err = ulps_of(v, e.approx(), &exact, scale * k);
+            let error = error_of(v, e.value());
+            let err = in_ulps(error, e.approx(), scale * k);
             // A tie inside the sticking solve (the twist's sign from an
             // exactly zero couple) may go either way.
             if a.critical_margin < TIE_MARGIN && err > FAST_BOUND_ULPS {
                 errors.inside_ties += 1;
             } else if !tie {
-                let raw = ulps_of(v, e.approx(), &exact, scale);
+                let raw = in_ulps(error, e.approx(), scale);
                 rows.push(("critical_impulse_ratio".into(), err, raw, false));
             }
         }
