@@ -109,7 +109,8 @@ pub struct ServiceConfig {
     /// After a request is shed at the concurrency limit, `/readyz` answers 503
     /// for this many milliseconds (longer than the readiness probe's period,
     /// so that the probe sees it).
-    #[arg(long, env = "RESTITUTION_SHEDDING_WINDOW_MS", default_value_t = 1_000)]
+    #[arg(long, env = "RESTITUTION_SHEDDING_WINDOW_MS",
+          default_value_t = crate::http::telemetry::DEFAULT_SHEDDING_WINDOW_MS)]
     pub shedding_window_ms: u64,
     /// Most points a streamed sweep (CSV, NDJSON) may have.
     #[arg(long, env = "RESTITUTION_MAX_SWEEP_POINTS", default_value_t = 10_000_000)]
@@ -194,7 +195,7 @@ impl Default for ServiceConfig {
             body_limit: 1 << 20,
             request_timeout_ms: 10_000,
             concurrency_limit: 512,
-            shedding_window_ms: 1_000,
+            shedding_window_ms: crate::http::telemetry::DEFAULT_SHEDDING_WINDOW_MS,
             max_sweep_points: 10_000_000,
             max_buffered_sweep_points: 200_000,
             max_buffered_sweeps: 4,

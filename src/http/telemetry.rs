@@ -140,6 +140,10 @@ struct Inner {
     recording: AtomicBool,
 }
 
+/// How long after a shed request `/readyz` answers 503 unless configured
+/// (`--shedding-window-ms`), in milliseconds.
+pub const DEFAULT_SHEDDING_WINDOW_MS: u64 = 1_000;
+
 impl Default for Telemetry {
     fn default() -> Self {
         let mut registry = Registry::with_prefix("restitution");
@@ -185,7 +189,7 @@ impl Default for Telemetry {
             sweep_points,
             started: Instant::now(),
             last_shed_ms: AtomicU64::new(0),
-            shedding_window_ms: AtomicU64::new(1_000),
+            shedding_window_ms: AtomicU64::new(DEFAULT_SHEDDING_WINDOW_MS),
             draining: AtomicBool::new(false),
             recording: AtomicBool::new(true),
         }))

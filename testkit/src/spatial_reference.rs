@@ -1781,14 +1781,18 @@ pub fn round_sqrt(x: &Q, y: &Q) -> f64 {
     } else {
         to_f64(&(x * sqrt_lower(y)))
     };
-    let mut c = next_down(next_down(guess));
-    for _ in 0..5 {
-        if is_correctly_rounded_sqrt(c, x, y) {
-            return c;
-        }
-        c = next_up(c);
-    }
-    panic!("no double rounds {x} √{y}");
+    round_sqrt_near(guess, x, y)
+}
+
+/// The double nearest `x √y` (`x √y ≠ 0`), within two ulps of `guess`:
+/// tried from `guess` outwards, since one double only is correctly rounded
+/// and the guess is most often it (each try compares squares of rationals).
+fn round_sqrt_near(guess: f64, x: &Q, y: &Q) -> f64 {
+    let (down, up) = (next_down(guess), next_up(guess));
+    [guess, down, up, next_down(down), next_up(up)]
+        .into_iter()
+        .find(|&c| is_correctly_rounded_sqrt(c, x, y))
+        .unwrap_or_else(|| panic!("no double rounds {x} √{y}"))
 }
 
 /// How an `exact` output compares with its expectation.
@@ -1814,7 +1818,16 @@ pub fn check(got: f64, e: &Expect) -> Check {
             ))
         }
     } else {
-        let (a, b) = (round_sqrt(&e.lo, &e.y), round_sqrt(&e.hi, &e.y));
+        // Both within two ulps of the lower value (`hi − lo ≤ 2⁻¹⁹⁹ lo`).
+        let (a, b) = if e.lo.is_zero() || e.y.is_zero() {
+            (round_sqrt(&e.lo, &e.y), round_sqrt(&e.hi, &e.y))
+        } else {
+            let guess = e.approx();
+            (
+                round_sqrt_near(guess, &e.lo, &e.y),
+                round_sqrt_near(guess, &e.hi, &e.y),
+            )
+        };
         if a.to_bits() != b.to_bits() {
             Check::Straddles
         } else if got.to_bits() == a.to_bits() {
