@@ -458,12 +458,8 @@ impl<F: std::any::Any, C: std::any::Any> Prepared<F, C> {
 /// The model in `Filtered`, through `kernels::run`: one compiled body per
 /// model and bound, whoever calls (a sweep's every output format, a fit, a
 /// single solve), rather than one inlined into each caller, which made the
-/// release build's fat LTO run for tens of minutes. In debug builds in a
-/// frame of its own too, where the whole model inlined takes about a
-/// megabyte of stack (no slot is shared at opt-level 0) that would
-/// otherwise stay under the exact stages' frames and overflow a 2 MiB
-/// thread.
-#[cfg_attr(debug_assertions, inline(never))]
+/// release build's fat LTO run for tens of minutes. (A debug build forces
+/// no inlining, so there it is a call like any other.)
 #[cfg_attr(not(debug_assertions), inline(always))]
 fn run_fast<const RUNNING: bool, const STATIC: bool, T>(
     model: &impl Model<T>,
