@@ -1,8 +1,10 @@
 //! Several points of a sweep evaluated together: [`Lanes`], `fast`'s first
-//! field for `L` points at once ([`Filtered`] with the static bound alone
-//! for the plane, with the running bound alone in space), each operation
-//! applied lane by lane (straight-line code over arrays, which the compiler
-//! vectorises across the lanes).
+//! field for `L` points at once ([`Filtered`] with the running bound alone
+//! in space, with the static bound alone for the torsional case), each
+//! operation applied lane by lane (straight-line code over arrays, which the
+//! compiler vectorises across the lanes), each lane keeping its own bounds.
+//! (One and two laminae evaluate their lanes with one static bound for all,
+//! `super::SharedLanes`.)
 //!
 //! The model runs in it unchanged. A decision is taken where every lane
 //! decides it the same way; where one lane cannot decide it, or two lanes
@@ -64,6 +66,13 @@ pub(crate) fn measure_lanes_against(scales: &[ErrorScales]) {
             cell.set(scales);
         }
     });
+}
+
+/// The scales of outputs of `kind`, lane by lane, that
+/// [`measure_lanes_against`] set.
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub(super) fn lane_scales(kind: ScaleKind) -> [f64; MAX_LANES] {
+    LANE_SCALES.with(|kinds| kinds[kind as usize].get())
 }
 
 impl<const L: usize, const RUNNING: bool, const STATIC: bool> Lanes<L, RUNNING, STATIC> {
@@ -195,7 +204,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
         const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
+        let scales = lane_scales(kind);
         let mut accepted = true;
         for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {
             let (v, ok) = self.lane(i).output_test(scale);
@@ -209,7 +218,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
         const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
+        let scales = lane_scales(kind);
         let mut accepted = true;
         for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {
             match self.lane(i).output_times_sqrt_against(&y.lane(i), scale) {

@@ -16,7 +16,9 @@
 //! - `Bounded<true>`: the same keeping exact sums and products exact (exact
 //!   rounding ties and cancelled zeros formed without a quotient);
 //! - [`Lanes`] (`lanes.rs`): `fast`'s first field for several points of a
-//!   sweep at once, deciding where every lane decides alike;
+//!   sweep at once, deciding where every lane decides alike, and
+//!   [`SharedLanes`] (`filtered/shared.rs`), the same with one static bound
+//!   for all lanes (one and two laminae);
 //! - [`Surd`]s, `a + b √g` in exact fractions of big integers, which always
 //!   decide (every answer holds at most one square root, that of its sliding
 //!   direction in space).
@@ -35,7 +37,7 @@ mod surd;
 pub(crate) use bounded::Bounded;
 pub(crate) use compensated::{Compensated, Unsettled};
 pub(crate) use field::{Field, OutOfRange, Undecided};
-pub(crate) use filtered::{Filtered, Uncertain, measure_against};
+pub(crate) use filtered::{Filtered, SharedLanes, Uncertain, measure_against};
 pub(crate) use fraction::Fraction;
 pub(crate) use lanes::{Lanes, MAX_LANES, measure_lanes_against};
 pub(crate) use surd::{Radical, Surd};

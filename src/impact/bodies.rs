@@ -8,7 +8,7 @@ use std::fmt;
 use super::approach::{approach_bound, approaches};
 use super::{Arithmetic, Case, LANES, Model, Stage, StaticBounds, TightFast, evaluate_contact};
 use crate::accuracy::{ErrorScales, ScalesOf};
-use crate::arith::{Compensated, Field, Fraction, Lanes, Radical};
+use crate::arith::{Compensated, Field, Fraction, Radical, SharedLanes};
 use crate::error::{ImpactError, Input, Output, Result, finite, positive};
 use crate::input::{BodiesImpact, Lamina, Law};
 use crate::model::Exact;
@@ -119,7 +119,7 @@ impl BodiesImpact {
 pub struct Fixed {
     /// Boxed: a sweep holds one.
     geometry: Option<Box<Prepared>>,
-    lanes: Option<Box<Geometry<Lanes<LANES>>>>,
+    lanes: Option<Box<Geometry<SharedLanes<LANES>>>>,
     law: Option<Result<Law>>,
 }
 
@@ -309,7 +309,7 @@ impl Case for BodiesImpact {
         // (`impact::barrier`).
         crate::kernels::run(
             #[cfg_attr(not(debug_assertions), inline(always))]
-            || bodies_lanes::<Lanes<LANES>, LANES>(impacts, law, geometry, outputs, out),
+            || bodies_lanes::<SharedLanes<LANES>, LANES>(impacts, law, geometry, outputs, out),
         )
         .is_ok()
     }

@@ -526,5 +526,8 @@ impl<const RUNNING: bool, const STATIC: bool> Filtered<RUNNING, STATIC> {
 
 mod outputs;
 mod parts;
+mod shared;
+
+pub(crate) use shared::SharedLanes;
 #[cfg(test)]
 mod tests;
