@@ -181,24 +181,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
             _ => Err(Diverged),
         }
     }
-    /// Lanes have no one value: outputs are read lane by lane
-    /// ([`Field::lanes_output`](super::Field::lanes_output)).
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round(&self) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_output(&self, _: ScaleKind) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_times_sqrt(&self, _: &Self) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_output_times_sqrt(&self, _: &Self, _: ScaleKind) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
+    no_one_value!();
     /// Every lane's output, each tested against its lane's scale as its
     /// single solve tests it ([`Filtered::output_test`]), together.
     #[cfg_attr(not(debug_assertions), inline(always))]

@@ -26,6 +26,30 @@
 //! Each is more decisive and dearer than the last; the order in which `exact`
 //! precision tries them is in [`crate::impact`].
 
+/// The [`Field`] methods that read one value, in a field of several points
+/// (lanes), which has none: each is `Diverged` (the points are solved one
+/// by one), and outputs are read lane by lane ([`Field::lanes_output`]).
+macro_rules! no_one_value {
+    () => {
+        #[cfg_attr(not(debug_assertions), inline(always))]
+        fn round(&self) -> Result<f64, Diverged> {
+            Err(Diverged)
+        }
+        #[cfg_attr(not(debug_assertions), inline(always))]
+        fn round_output(&self, _: ScaleKind) -> Result<f64, Diverged> {
+            Err(Diverged)
+        }
+        #[cfg_attr(not(debug_assertions), inline(always))]
+        fn round_times_sqrt(&self, _: &Self) -> Result<f64, Diverged> {
+            Err(Diverged)
+        }
+        #[cfg_attr(not(debug_assertions), inline(always))]
+        fn round_output_times_sqrt(&self, _: &Self, _: ScaleKind) -> Result<f64, Diverged> {
+            Err(Diverged)
+        }
+    };
+}
+
 mod bounded;
 mod compensated;
 mod field;

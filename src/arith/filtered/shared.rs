@@ -251,23 +251,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
             _ => Err(Diverged),
         }
     }
-    /// Lanes have no one value: outputs are read lane by lane.
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round(&self) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_output(&self, _: ScaleKind) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_times_sqrt(&self, _: &Self) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
-    #[cfg_attr(not(debug_assertions), inline(always))]
-    fn round_output_times_sqrt(&self, _: &Self, _: ScaleKind) -> Result<f64, Diverged> {
-        Err(Diverged)
-    }
+    no_one_value!();
     /// Every lane's output `h + 0`, each tested against the shared bound
     /// and its lane's scale ([`Filtered::output_test`]), together.
     #[cfg_attr(not(debug_assertions), inline(always))]
