@@ -25,9 +25,9 @@
 
 use std::cmp::Ordering;
 
-use super::super::lanes::{Diverged, lane_scales};
+use super::super::lanes::{Diverged, MAX_LANES, lane_scales};
 use super::{
-    ACCEPTED_RELATIVE_BOUND, Filtered, LAMBDA_MAX, ONE_PLUS_2U, SLACK, U, floored, max, product_magnitude,
+    ACCEPTED_RELATIVE_BOUND, Filtered, LAMBDA_MAX, SLACK, U, floored, max, once_rounded, product_magnitude,
 };
 use crate::accuracy::ScaleKind;
 
@@ -63,16 +63,10 @@ fn largest<const L: usize>(x: [f64; L]) -> f64 {
     m
 }
 
-/// [`super::once_rounded`] of each lane's value, the largest.
+/// [`once_rounded`] of each lane's value, the largest.
 #[cfg_attr(not(debug_assertions), inline(always))]
-fn once_rounded<const L: usize>(h: &[f64; L]) -> f64 {
-    largest(lanewise::<L>(|i| {
-        if h[i] == 0.0 {
-            0.0
-        } else {
-            floored(h[i].abs() * ONE_PLUS_2U)
-        }
-    }))
+fn largest_once_rounded<const L: usize>(h: &[f64; L]) -> f64 {
+    largest(lanewise::<L>(|i| once_rounded(h[i])))
 }
 
 impl<const L: usize> SharedLanes<L> {
@@ -140,7 +134,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
         let h = lanewise(|i| self.h[i] + o.h[i]);
         SharedLanes {
             m: if self.lambda + o.lambda == 0.0 {
-                once_rounded(&h)
+                largest_once_rounded(&h)
             } else {
                 self.m + o.m
             },
@@ -171,7 +165,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
         let m = if self.lambda + b.lambda + c.lambda == 0.0 {
             largest(lanewise::<L>(|i| {
                 if h[i].abs() >= f64::MIN_POSITIVE {
-                    floored(h[i].abs() * ONE_PLUS_2U)
+                    once_rounded(h[i])
                 } else {
                     general
                 }
@@ -256,6 +250,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
     /// and its lane's scale ([`Filtered::output_test`]), together.
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
+        const { assert!(L <= MAX_LANES, "more lanes than scales") };
         let scales = lane_scales(kind);
         let bound = self.error_bound();
         let mut accepted = self.lambda <= LAMBDA_MAX;
@@ -272,6 +267,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
     /// `h_x` not zero in every lane (else the points are solved one by one).
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
+        const { assert!(L <= MAX_LANES, "more lanes than scales") };
         let scales = lane_scales(kind);
         let (error_x, error_y) = (self.error_bound(), y.error_bound());
         let mut accepted = self.lambda <= LAMBDA_MAX && y.lambda <= LAMBDA_MAX;
@@ -292,5 +288,130 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
     }
     fn approx(&self) -> f64 {
         self.h[0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::Field;
+    use super::*;
+    use crate::rng::Rng;
+
+    type One = Filtered<false, true>;
+
+    /// Four lanes of inputs: nearby values, values of unrelated magnitudes
+    /// and signs, or either with exact zeros among them.
+    fn inputs(rng: &mut Rng) -> [f64; 4] {
+        let base = rng.sign() * rng.log_uniform(-3.0, 3.0);
+        let close = rng.chance(0.5);
+        let zeros = rng.chance(0.2);
+        std::array::from_fn(|_| {
+            if zeros && rng.chance(0.3) {
+                0.0
+            } else if close {
+                base * (1.0 + rng.range(-1e-3, 1e-3))
+            } else {
+                rng.sign() * rng.log_uniform(-3.0, 3.0)
+            }
+        })
+    }
+
+    /// Along random chains of every operation, each lane's value is its own
+    /// point's (`Filtered`, the plane's first field) bit for bit, with the
+    /// same `λ`, and the shared `M` is at least its own; a sign the lanes
+    /// decide, each point decides alike, and an output (`x` or `x √y`) the
+    /// lanes accept, each point accepts.
+    #[test]
+    fn each_lane_is_its_own_value_within_the_shared_bound() {
+        let mut rng = Rng::new(41);
+        let (mut signs, mut outputs, mut roots) = (0, 0, 0);
+        for _ in 0..3000 {
+            let mut shared: Vec<SharedLanes<4>> = Vec::new();
+            let mut alone: Vec<[One; 4]> = Vec::new();
+            for _ in 0..3 {
+                let x = inputs(&mut rng);
+                shared.push(SharedLanes::of_lanes(|i| x[i]));
+                alone.push(x.map(One::exact));
+            }
+            let (num, den) = (
+                inputs(&mut rng),
+                inputs(&mut rng).map(|d| if d == 0.0 { 1.0 } else { d }),
+            );
+            shared.push(SharedLanes::quotient_of_lanes(|i| {
+                (num[i], den[i], num[i] / den[i])
+            }));
+            alone.push(std::array::from_fn(|i| One::quotient_of(num[i], num[i] / den[i])));
+            let c = rng.log_uniform(-1.0, 1.0);
+            shared.push(SharedLanes::of(c));
+            alone.push([One::exact(c); 4]);
+            for _ in 0..12 {
+                let [a, b, c] = [0; 3].map(|_| (rng.next_u64() % shared.len() as u64) as usize);
+                let op = rng.next_u64() % 5;
+                let s = match op {
+                    0 => shared[a].add(&shared[b]),
+                    1 => shared[a].sub(&shared[b]),
+                    2 => shared[a].mul(&shared[b]),
+                    3 => shared[a].mul_add(&shared[b], &shared[c]),
+                    _ => shared[a].div(&shared[b]),
+                };
+                let one: [One; 4] = std::array::from_fn(|i| {
+                    let (x, y, z) = (&alone[a][i], &alone[b][i], &alone[c][i]);
+                    match op {
+                        0 => x.add(y),
+                        1 => x.sub(y),
+                        2 => x.mul(y),
+                        3 => x.mul_add(y, z),
+                        _ => x.div(y),
+                    }
+                });
+                for (i, point) in one.iter().enumerate() {
+                    let (h, m, lambda, _) = point.parts();
+                    assert_eq!(s.h[i].to_bits(), h.to_bits(), "{s:?} {point:?}");
+                    assert_eq!(s.lambda, lambda);
+                    // (A NaN `M` decides nothing.)
+                    assert_ne!(
+                        m.partial_cmp(&s.m),
+                        Some(Ordering::Greater),
+                        "lane {i}: {s:?} {point:?}"
+                    );
+                }
+                if let Ok(sign) = s.sign() {
+                    signs += 1;
+                    for point in &one {
+                        assert_eq!(Field::sign(point), Ok(sign), "{s:?} {point:?}");
+                    }
+                }
+                let mut values = [0.0; 4];
+                let scale = rng.log_uniform(-3.0, 3.0);
+                let scales = crate::accuracy::ErrorScales {
+                    velocity: scale,
+                    ..Default::default()
+                };
+                crate::arith::measure_lanes_against(&[scales; 4]);
+                if s.lanes_output(ScaleKind::Velocity, &mut values).is_ok() {
+                    outputs += 1;
+                    for (point, v) in one.iter().zip(values) {
+                        assert_eq!(point.output_against(scale).map(f64::to_bits), Ok(v.to_bits()));
+                    }
+                }
+                if shared[b].sign() == Ok(Ordering::Greater)
+                    && s.lanes_output_times_sqrt(&shared[b], ScaleKind::Velocity, &mut values)
+                        .is_ok()
+                {
+                    roots += 1;
+                    for ((point, y), v) in one.iter().zip(&alone[b]).zip(values) {
+                        let single = point.output_times_sqrt_against(y, scale);
+                        assert_eq!(single.map(f64::to_bits), Ok(v.to_bits()));
+                    }
+                }
+                shared.push(s);
+                alone.push(one);
+            }
+        }
+        // Most chains decide most signs and outputs in lanes.
+        assert!(
+            signs > 10_000 && outputs > 10_000 && roots > 1_000,
+            "{signs} signs, {outputs} outputs, {roots} roots"
+        );
     }
 }
