@@ -68,11 +68,13 @@ pub(crate) fn measure_lanes_against(scales: &[ErrorScales]) {
     });
 }
 
-/// The scales of outputs of `kind`, lane by lane, that
+/// The scales of outputs of `kind` of the first `L` lanes, that
 /// [`measure_lanes_against`] set.
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub(super) fn lane_scales(kind: ScaleKind) -> [f64; MAX_LANES] {
-    LANE_SCALES.with(|kinds| kinds[kind as usize].get())
+pub(super) fn lane_scales<const L: usize>(kind: ScaleKind) -> [f64; L] {
+    const { assert!(L <= MAX_LANES, "more lanes than scales") };
+    let scales = LANE_SCALES.with(|kinds| kinds[kind as usize].get());
+    std::array::from_fn(|i| scales[i])
 }
 
 impl<const L: usize, const RUNNING: bool, const STATIC: bool> Lanes<L, RUNNING, STATIC> {
@@ -186,8 +188,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     /// single solve tests it ([`Filtered::output_test`]), together.
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
-        const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = lane_scales(kind);
+        let scales = lane_scales::<L>(kind);
         let mut accepted = true;
         for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {
             let (v, ok) = self.lane(i).output_test(scale);
@@ -200,8 +201,7 @@ impl<const L: usize, const RUNNING: bool, const STATIC: bool> super::Field for L
     /// ([`Filtered::output_times_sqrt_against`]).
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
-        const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = lane_scales(kind);
+        let scales = lane_scales::<L>(kind);
         let mut accepted = true;
         for (i, (value, &scale)) in out[..L].iter_mut().zip(&scales).enumerate() {
             match self.lane(i).output_times_sqrt_against(&y.lane(i), scale) {

@@ -25,7 +25,7 @@
 
 use std::cmp::Ordering;
 
-use super::super::lanes::{Diverged, MAX_LANES, lane_scales};
+use super::super::lanes::{Diverged, lane_scales};
 use super::{
     ACCEPTED_RELATIVE_BOUND, Filtered, LAMBDA_MAX, SLACK, U, floored, max, once_rounded, product_magnitude,
 };
@@ -250,8 +250,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
     /// and its lane's scale ([`Filtered::output_test`]), together.
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output(&self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
-        const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = lane_scales(kind);
+        let scales = lane_scales::<L>(kind);
         let bound = self.error_bound();
         let mut accepted = self.lambda <= LAMBDA_MAX;
         for (i, value) in out[..L].iter_mut().enumerate() {
@@ -267,8 +266,7 @@ impl<const L: usize> super::super::Field for SharedLanes<L> {
     /// `h_x` not zero in every lane (else the points are solved one by one).
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn lanes_output_times_sqrt(&self, y: &Self, kind: ScaleKind, out: &mut [f64]) -> Result<(), Diverged> {
-        const { assert!(L <= MAX_LANES, "more lanes than scales") };
-        let scales = lane_scales(kind);
+        let scales = lane_scales::<L>(kind);
         let (error_x, error_y) = (self.error_bound(), y.error_bound());
         let mut accepted = self.lambda <= LAMBDA_MAX && y.lambda <= LAMBDA_MAX;
         // An exact zero factor in every lane: each lane's exact zero.
